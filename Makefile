@@ -1,0 +1,35 @@
+# The two commands of the README:
+#   make demo   installs dependencies, builds, renders the default scenario into out/demo/
+#   make test   installs dependencies, builds, runs the whole test suite
+# Other targets: build, bench, asan (sanitizer build + tests), clean.
+PRESET ?= release
+BUILD  := build/$(PRESET)
+JOBS   ?= $(shell nproc)
+
+.PHONY: all deps configure build test demo bench asan clean
+
+all: build
+
+deps:
+	@scripts/install-deps
+
+configure: deps
+	@cmake --preset $(PRESET) >/dev/null
+
+build: configure
+	@cmake --build --preset $(PRESET) -j $(JOBS)
+
+test: build
+	@ctest --preset $(PRESET) -j $(JOBS)
+
+demo: build
+	@OBSCURA=$(BUILD)/apps/obscura/obscura scripts/demo
+
+bench: build
+	@$(BUILD)/bench/bench_emission_absorption
+
+asan:
+	@$(MAKE) test PRESET=asan
+
+clean:
+	@rm -rf build out

@@ -1,0 +1,29 @@
+#pragma once
+// Subcommands of the `obscura` tool. Each registers its options on the parent
+// app and returns the function that runs it (exit status). Commands are thin:
+// they parse, call the library and print (STYLE.md §16).
+#include <functional>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+namespace obscura::cli {
+
+using Runner = std::function<int()>;
+
+struct Command {
+  CLI::App* app;
+  Runner run;
+};
+
+// The full command line, recorded in provenance.
+struct Invocation {
+  std::string command_line;
+};
+
+Command add_info_command(CLI::App& app);
+Command add_radiance_command(CLI::App& app);
+Command add_render_command(CLI::App& app, const Invocation& invocation);
+Command add_make_puff_command(CLI::App& app, const Invocation& invocation);
+
+}  // namespace obscura::cli

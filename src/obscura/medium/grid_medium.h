@@ -1,0 +1,39 @@
+#pragma once
+// The render layer's view of a dense VoxelGrid: trilinear reconstruction
+// between voxel centres, clamped to the edge values in the outer half voxel, so
+// the medium fills exactly the grid's cells (n·Δ metres along each axis).
+// Along a ray, each reconstruction cell gives one MediumSegment whose cubics
+// are the exact restriction of the trilinear field to the ray; blocks whose
+// majorant is zero are skipped.
+#include <memory>
+
+#include "obscura/medium/majorant_grid.h"
+#include "obscura/medium/medium.h"
+#include "obscura/medium/voxel_grid.h"
+
+namespace obscura {
+
+class GridMedium final : public Medium {
+ public:
+  // Block size of the majorant grid, in cells: large enough that the block
+  // walk is cheap, small enough to skip the empty space around a cloud.
+  static constexpr int kDefaultBlockSize = 8;
+
+  explicit GridMedium(std::shared_ptr<const VoxelGrid> grid, int block_size = kDefaultBlockSize);
+
+  BBox3 bounds() const override { return bounds_; }
+  const std::vector<double>& wavelengths_um() const override { return grid_->wavelengths_um(); }
+  void coefficients_at(const Vec3& p, MediumPoint& out) const override;
+  void trace_segments(const Ray& ray, double t_min, double t_max,
+                      const SegmentVisitor& visit) const override;
+
+  const VoxelGrid& grid() const { return *grid_; }
+  const MajorantGrid& majorants() const { return majorants_; }
+
+ private:
+  std::shared_ptr<const VoxelGrid> grid_;
+  MajorantGrid majorants_;
+  BBox3 bounds_;
+};
+
+}  // namespace obscura

@@ -1,0 +1,57 @@
+#pragma once
+// The small interface through which the render layer sees any participating
+// medium (DESIGN.md §5): a dense voxel grid, a homogeneous box, and later
+// animated clouds and VDB-backed grids all plug in here unchanged.
+#include <functional>
+#include <vector>
+
+#include "obscura/core/bbox.h"
+#include "obscura/core/ray.h"
+#include "obscura/medium/cubic.h"
+
+namespace obscura {
+
+// Coefficients at one point, for the medium's own spectral samples.
+struct MediumPoint {
+  std::vector<double> sigma_a;  // 1/m
+  std::vector<double> sigma_s;  // 1/m
+  std::vector<double> g;        // HG asymmetry, dimensionless
+  double temperature_k = 0.0;
+};
+
+// A piece [t_begin, t_end] of a ray (t in metres along a unit direction) over
+// which every property is a cubic polynomial in s = t − t_begin. Outside the
+// segments a medium reports, its coefficients are zero.
+struct MediumSegment {
+  double t_begin = 0.0;
+  double t_end = 0.0;
+  const Cubic* sigma_a = nullptr;  // spectral_count cubics, 1/m
+  const Cubic* sigma_s = nullptr;  // spectral_count cubics, 1/m
+  Cubic temperature;               // K
+  int spectral_count = 0;
+};
+
+class Medium {
+ public:
+  // Return false to stop the traversal early.
+  using SegmentVisitor = std::function<bool(const MediumSegment&)>;
+
+  virtual ~Medium() = default;
+
+  // World-space box outside which the medium is empty.
+  virtual BBox3 bounds() const = 0;
+  // The spectral samples (µm, increasing) at which the medium is defined.
+  virtual const std::vector<double>& wavelengths_um() const = 0;
+  // Coefficients at a world point; zero coefficients (and 0 K) outside.
+  virtual void coefficients_at(const Vec3& p, MediumPoint& out) const = 0;
+  // Visits, in order of increasing t, the segments of ray ∩ [t_min, t_max]
+  // where the medium may be non-zero. `ray.direction` must be unit length.
+  virtual void trace_segments(const Ray& ray, double t_min, double t_max,
+                              const SegmentVisitor& visit) const = 0;
+
+  // Optical depth τ = ∫ σt ds along the ray over [t_min, t_max], one value per
+  // spectral sample, integrated exactly from the segments' cubics.
+  std::vector<double> optical_depth(const Ray& ray, double t_min, double t_max) const;
+};
+
+}  // namespace obscura

@@ -1,0 +1,112 @@
+#include "obscura/render/renderer.h"
+
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+#include "obscura/core/error.h"
+#include "obscura/core/parallel.h"
+#include "obscura/core/rng.h"
+#include "obscura/render/emission_absorption.h"
+#include "obscura/render/spectral_nodes.h"
+
+namespace obscura {
+
+SensorImage render_sensor(const Scene& scene, const Sensor& sensor, const RenderOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  const RenderSettings& settings = scene.settings;
+  if (settings.method != "emission-absorption")
+    throw Error("render: unknown method '" + settings.method + "'");
+  const PinholeCamera& cam = sensor.camera;
+  const int width = cam.width(), height = cam.height();
+  const std::size_t pixels = static_cast<std::size_t>(width) * height;
+  const std::vector<double> grey = {1.0};
+  const std::vector<double>& medium_wl = scene.medium ? scene.medium->wavelengths_um() : grey;
+
+  SensorImage image;
+  image.sensor = sensor.name;
+  image.width = width;
+  image.height = height;
+  std::vector<SpectralNodes> band_nodes;
+  for (const Band& band : sensor.bands) {
+    band_nodes.emplace_back(BandQuadrature(band, settings.spectral_nodes_per_band, 0.0), medium_wl);
+    if (band_nodes.back().size() > static_cast<std::size_t>(kMaxSpectralNodes))
+      throw InputError("", "band " + band.name(), "too many spectral nodes for one band");
+    image.bands.push_back({band, std::vector<float>(pixels), std::vector<float>(pixels),
+                           std::vector<float>(pixels)});
+  }
+
+  std::atomic<std::uint64_t> segments{0}, evals{0};
+  std::atomic<int> rows_done{0};
+  const int spp = settings.samples_per_pixel;
+  // Stratify the pixel into a near-square grid of spp cells.
+  const int strata_x = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(spp))));
+
+  parallel_for(static_cast<std::size_t>(height), options.threads, [&](std::size_t row) {
+    const int y = static_cast<int>(row);
+    std::array<double, kMaxSpectralNodes> radiance, transmittance;
+    EmissionAbsorptionStats stats;
+    for (int x = 0; x < width; ++x) {
+      const std::size_t pixel = static_cast<std::size_t>(y) * width + x;
+      Rng rng(options.seed, pixel);
+      std::vector<double> sum_l(image.bands.size(), 0.0), sum_t(image.bands.size(), 0.0);
+      for (int s = 0; s < spp; ++s) {
+        double px = x + 0.5, py = y + 0.5;
+        if (spp > 1) {
+          const int sx = s % strata_x, sy = s / strata_x;
+          const int strata_y = (spp + strata_x - 1) / strata_x;
+          px = x + (sx + rng.uniform()) / strata_x;
+          py = y + (sy + rng.uniform()) / strata_y;
+        }
+        const Ray ray = cam.generate_ray(px, py);
+        SurfaceHit hit;
+        const bool hit_surface = intersect_surfaces(scene.surfaces, ray, 0.0,
+                                                    std::numeric_limits<double>::infinity(), hit);
+        const double t_max = hit_surface ? hit.t : std::numeric_limits<double>::infinity();
+        for (std::size_t b = 0; b < image.bands.size(); ++b) {
+          const SpectralNodes& nodes = band_nodes[b];
+          const int n = static_cast<int>(nodes.size());
+          for (int i = 0; i < n; ++i) { radiance[i] = 0.0; transmittance[i] = 1.0; }
+          integrate_emission_absorption(scene.medium.get(), ray, t_max, nodes,
+                                        settings.relative_tolerance, radiance.data(),
+                                        transmittance.data(), &stats);
+          double band_l = 0, band_t = 0;
+          for (int i = 0; i < n; ++i) {
+            const SpectralNode& nd = nodes.nodes()[i];
+            double background = scene.sky.radiance(nd.wavelength_um);
+            if (hit_surface) {
+              const SurfaceMaterial& m = scene.surfaces[hit.surface]->material();
+              // Opaque grey surface: emits ε B(T) and reflects (1 − ε) of a uniform sky.
+              background = m.emissivity * nd.planck(m.temperature_k) + (1.0 - m.emissivity) * background;
+            }
+            band_l += nd.weight_um * (radiance[i] + transmittance[i] * background);
+            band_t += nd.weight_um * transmittance[i];
+          }
+          sum_l[b] += band_l;
+          sum_t[b] += band_t / nodes.quadrature().response_integral();
+        }
+      }
+      for (std::size_t b = 0; b < image.bands.size(); ++b) {
+        const double l = sum_l[b] / spp;
+        image.bands[b].radiance[pixel] = static_cast<float>(l);
+        image.bands[b].transmittance[pixel] = static_cast<float>(sum_t[b] / spp);
+        image.bands[b].apparent_temperature[pixel] =
+            static_cast<float>(band_nodes[b].quadrature().apparent_temperature(l));
+      }
+    }
+    segments += stats.segments;
+    evals += stats.integrand_evals;
+    const int done = ++rows_done;
+    if (options.progress) options.progress(done, height);
+  });
+
+  image.stats.rays = pixels * spp;
+  image.stats.segments = segments;
+  image.stats.integrand_evals = evals;
+  image.stats.seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return image;
+}
+
+}  // namespace obscura

@@ -1,0 +1,46 @@
+#pragma once
+// Renders a sensor's images of a scene: for every pixel and band, band
+// radiance (W m⁻² sr⁻¹), line-of-sight transmittance of the medium up to the
+// first surface (response-weighted over the band, dimensionless) and apparent
+// temperature (K, the blackbody temperature with the same band radiance).
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "obscura/core/band.h"
+#include "obscura/scene/scene.h"
+
+namespace obscura {
+
+struct BandImage {
+  Band band;
+  std::vector<float> radiance;              // W m⁻² sr⁻¹
+  std::vector<float> transmittance;         // 1
+  std::vector<float> apparent_temperature;  // K
+};
+
+struct RenderStats {
+  std::uint64_t rays = 0;
+  std::uint64_t segments = 0;  // medium cells visited, summed over bands
+  std::uint64_t integrand_evals = 0;
+  double seconds = 0;
+};
+
+struct SensorImage {
+  std::string sensor;
+  int width = 0, height = 0;
+  std::vector<BandImage> bands;
+  RenderStats stats;
+};
+
+struct RenderOptions {
+  int threads = 0;         // 0: all cores
+  std::uint64_t seed = 1;  // per-pixel streams derive from it
+  // Called as rows complete, with (rows done, rows total); may be called from any thread.
+  std::function<void(int, int)> progress;
+};
+
+SensorImage render_sensor(const Scene& scene, const Sensor& sensor, const RenderOptions& options);
+
+}  // namespace obscura

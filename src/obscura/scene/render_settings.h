@@ -1,0 +1,17 @@
+#pragma once
+// How to render a scene: the solver and its accuracy/effort knobs.
+#include <cstdint>
+#include <string>
+
+namespace obscura {
+
+struct RenderSettings {
+  std::string method = "emission-absorption";
+  int samples_per_pixel = 1;      // 1: the pixel centre; more: stratified jitter
+  int spectral_nodes_per_band = 8;  // Gauss–Legendre nodes across each band
+  double relative_tolerance = 1e-6;  // emission integral per cell
+  std::uint64_t seed = 1;
+  int threads = 0;  // 0: all cores
+};
+
+}  // namespace obscura

@@ -1,0 +1,220 @@
+// Scene files: JSON documents described in docs/formats.md. Every value is
+// checked where it is read, errors name the file and the JSON path, and a key
+// that nothing reads is an error (a typo must not pass silently).
+#include <cmath>
+#include <set>
+
+#include <fmt/format.h>
+
+#include "obscura/io/json_reader.h"
+#include "obscura/io/vdb_keyframe.h"
+#include "obscura/medium/grid_medium.h"
+#include "obscura/medium/homogeneous_medium.h"
+#include "obscura/scene/scene.h"
+
+namespace obscura {
+namespace {
+
+constexpr int kMaxImageSide = 16384;
+
+SurfaceMaterial parse_material(JsonObject& o) {
+  SurfaceMaterial m;
+  m.temperature_k = o.number("temperature");
+  if (!(m.temperature_k >= 0)) throw o.error("temperature", "must be >= 0 K");
+  m.emissivity = o.number_or("emissivity", 1.0);
+  if (!(m.emissivity >= 0 && m.emissivity <= 1)) throw o.error("emissivity", "must lie in [0, 1]");
+  return m;
+}
+
+std::unique_ptr<Surface> parse_surface(JsonObject o, int index) {
+  const std::string type = o.string("type");
+  const std::string name = o.string_or("name", fmt::format("{}{}", type, index));
+  const SurfaceMaterial m = parse_material(o);
+  std::unique_ptr<Surface> s;
+  if (type == "ground") {
+    s = std::make_unique<GroundPlane>(name, m, o.number_or("height", 0.0));
+  } else if (type == "box") {
+    const Vec3 lo = o.vec3("min"), hi = o.vec3("max");
+    if (!(lo.x < hi.x && lo.y < hi.y && lo.z < hi.z))
+      throw o.error("max", "every component must exceed the corresponding one of min");
+    s = std::make_unique<BoxSurface>(name, m, BBox3(lo, hi));
+  } else {
+    throw o.error("type", fmt::format("unknown surface type '{}' (expected ground or box)", type));
+  }
+  o.finish();
+  return s;
+}
+
+Band parse_band(const nlohmann::json& v, const std::string& file, const std::string& path) {
+  if (v.is_string()) {
+    try {
+      return Band::parse(v.get<std::string>(), path);
+    } catch (const InputError& e) {
+      throw InputError(file, path, e.detail());
+    }
+  }
+  JsonObject o(v, file, path);
+  const std::string name = o.string("name");
+  std::vector<ResponsePoint> table;
+  if (o.has("response")) {
+    const auto& arr = o.array("response");
+    for (std::size_t i = 0; i < arr.size(); ++i) {
+      const auto& p = arr[i];
+      if (!p.is_array() || p.size() != 2 || !p[0].is_number() || !p[1].is_number())
+        throw InputError(file, fmt::format("{}/response/{}", path, i),
+                         "expected [wavelength_um, response]");
+      table.push_back({p[0].get<double>(), p[1].get<double>()});
+    }
+  } else {
+    const double lo = o.positive("min_um"), hi = o.positive("max_um");
+    if (!(hi > lo)) throw o.error("max_um", "must exceed min_um");
+    table = {{lo, 1.0}, {hi, 1.0}};
+  }
+  o.finish();
+  try {
+    return Band::tabulated(name, std::move(table));
+  } catch (const InputError& e) {
+    throw InputError(file, path + "/response", e.detail());
+  }
+}
+
+Sensor parse_sensor(JsonObject o, int index) {
+  Sensor s;
+  s.name = o.string_or("name", fmt::format("sensor{}", index));
+  if (s.name.empty() || s.name.find_first_of("/\\ ") != std::string::npos)
+    throw o.error("name", "must be non-empty without spaces or slashes (it names output files)");
+  const Vec3 position = o.vec3("position");
+  const Vec3 look_at = o.vec3("look_at");
+  const Vec3 up = o.vec3_or("up", Vec3(0, 0, 1));
+  const double fov = o.number("fov_deg");
+  if (!(fov > 0 && fov < 180)) throw o.error("fov_deg", "must lie in (0, 180) degrees");
+  const long long w = o.integer("width"), h = o.integer("height");
+  if (w < 1 || w > kMaxImageSide) throw o.error("width", fmt::format("must lie in [1, {}]", kMaxImageSide));
+  if (h < 1 || h > kMaxImageSide) throw o.error("height", fmt::format("must lie in [1, {}]", kMaxImageSide));
+  try {
+    s.camera = PinholeCamera(position, look_at, up, fov, static_cast<int>(w), static_cast<int>(h));
+  } catch (const Error& e) {
+    throw o.error("look_at", e.what());
+  }
+  const auto& bands = o.array("bands");
+  if (bands.empty()) throw o.error("bands", "needs at least one band");
+  std::set<std::string> names;
+  for (std::size_t i = 0; i < bands.size(); ++i) {
+    const std::string path = fmt::format("{}/{}", o.path_of("bands"), i);
+    s.bands.push_back(parse_band(bands[i], o.file(), path));
+    if (!names.insert(s.bands.back().name()).second)
+      throw InputError(o.file(), path, fmt::format("duplicate band name '{}'", s.bands.back().name()));
+  }
+  o.finish();
+  return s;
+}
+
+std::shared_ptr<const Medium> parse_cloud(JsonObject o, const std::filesystem::path& base,
+                                          std::vector<std::filesystem::path>& inputs) {
+  const std::string type = o.string("type");
+  std::shared_ptr<const Medium> m;
+  if (type == "vdb") {
+    std::filesystem::path file = o.string("file");
+    if (file.is_relative()) file = base / file;
+    if (!std::filesystem::is_regular_file(file))
+      throw o.error("file", fmt::format("cannot open cloud keyframe '{}': no such file", file.string()));
+    inputs.push_back(file);
+    CloudKeyframe kf = read_cloud_keyframe(file);
+    m = std::make_shared<GridMedium>(kf.grid);
+  } else if (type == "homogeneous") {
+    const Vec3 lo = o.vec3("min"), hi = o.vec3("max");
+    if (!(lo.x < hi.x && lo.y < hi.y && lo.z < hi.z))
+      throw o.error("max", "every component must exceed the corresponding one of min");
+    auto wl = o.numbers("wavelengths_um");
+    auto sa = o.numbers("sigma_a");
+    auto ss = o.numbers("sigma_s");
+    auto g = o.has("g") ? o.numbers("g") : std::vector<double>(wl.size(), 0.0);
+    const double t = o.number("temperature");
+    try {
+      m = std::make_shared<HomogeneousMedium>(BBox3(lo, hi), wl, sa, ss, g, t, "");
+    } catch (const InputError& e) {
+      throw o.error(e.field(), e.detail());
+    }
+  } else {
+    throw o.error("type", fmt::format("unknown cloud type '{}' (expected vdb or homogeneous)", type));
+  }
+  o.finish();
+  return m;
+}
+
+}  // namespace
+
+Scene parse_scene(const nlohmann::json& doc, const std::filesystem::path& file) {
+  const std::string fname = file.string();
+  const std::filesystem::path base = file.has_parent_path() ? file.parent_path() : ".";
+  JsonObject root(doc, fname, "");
+  Scene scene;
+  scene.source = doc;
+
+  const auto& sensors = root.array("sensors");
+  if (sensors.empty()) throw root.error("sensors", "needs at least one sensor");
+  std::set<std::string> sensor_names;
+  for (std::size_t i = 0; i < sensors.size(); ++i) {
+    scene.sensors.push_back(
+        parse_sensor(JsonObject(sensors[i], fname, fmt::format("/sensors/{}", i)), static_cast<int>(i)));
+    if (!sensor_names.insert(scene.sensors.back().name).second)
+      throw InputError(fname, fmt::format("/sensors/{}/name", i), "duplicate sensor name");
+  }
+
+  if (root.has("clouds")) {
+    const auto& clouds = root.array("clouds");
+    if (clouds.size() > 1)
+      throw root.error("clouds", "this version renders at most one cloud per scene");
+    for (std::size_t i = 0; i < clouds.size(); ++i)
+      scene.medium = parse_cloud(JsonObject(clouds[i], fname, fmt::format("/clouds/{}", i)), base,
+                                 scene.input_files);
+  }
+
+  if (root.has("surfaces")) {
+    const auto& surfaces = root.array("surfaces");
+    for (std::size_t i = 0; i < surfaces.size(); ++i)
+      scene.surfaces.push_back(
+          parse_surface(JsonObject(surfaces[i], fname, fmt::format("/surfaces/{}", i)), static_cast<int>(i)));
+  }
+
+  if (auto sky = root.optional_object("sky")) {
+    scene.sky.temperature_k = sky->number("temperature");
+    if (!(scene.sky.temperature_k >= 0)) throw sky->error("temperature", "must be >= 0 K");
+    sky->finish();
+  }
+
+  if (auto r = root.optional_object("render")) {
+    RenderSettings& s = scene.settings;
+    s.method = r->string_or("method", s.method);
+    if (s.method != "emission-absorption")
+      throw r->error("method", fmt::format("unknown method '{}' (available: emission-absorption)", s.method));
+    const long long spp = r->integer_or("samples_per_pixel", s.samples_per_pixel);
+    if (spp < 1 || spp > 65536) throw r->error("samples_per_pixel", "must lie in [1, 65536]");
+    s.samples_per_pixel = static_cast<int>(spp);
+    const long long nodes = r->integer_or("spectral_nodes_per_band", s.spectral_nodes_per_band);
+    if (nodes < 1 || nodes > 64) throw r->error("spectral_nodes_per_band", "must lie in [1, 64]");
+    s.spectral_nodes_per_band = static_cast<int>(nodes);
+    s.relative_tolerance = r->number_or("relative_tolerance", s.relative_tolerance);
+    if (!(s.relative_tolerance >= 1e-12 && s.relative_tolerance <= 0.1))
+      throw r->error("relative_tolerance", "must lie in [1e-12, 0.1]");
+    const long long seed = r->integer_or("seed", static_cast<long long>(s.seed));
+    if (seed < 0) throw r->error("seed", "must be >= 0");
+    s.seed = static_cast<std::uint64_t>(seed);
+    const long long threads = r->integer_or("threads", s.threads);
+    if (threads < 0 || threads > 4096) throw r->error("threads", "must lie in [0, 4096] (0: all cores)");
+    s.threads = static_cast<int>(threads);
+    r->finish();
+  }
+  root.string_or("description", "");
+  root.finish();
+  return scene;
+}
+
+Scene load_scene(const std::filesystem::path& path) {
+  const nlohmann::json doc = read_json_file(path.string());
+  Scene scene = parse_scene(doc, path);
+  scene.input_files.insert(scene.input_files.begin(), path);
+  return scene;
+}
+
+}  // namespace obscura

@@ -1,0 +1,17 @@
+#pragma once
+// A sensor: a camera that records several spectral bands at once.
+#include <string>
+#include <vector>
+
+#include "obscura/core/band.h"
+#include "obscura/scene/camera.h"
+
+namespace obscura {
+
+struct Sensor {
+  std::string name;
+  PinholeCamera camera;
+  std::vector<Band> bands;
+};
+
+}  // namespace obscura

@@ -1,0 +1,139 @@
+#include "obscura/scene/scene.h"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "obscura/core/error.h"
+
+namespace obscura {
+namespace {
+
+nlohmann::json minimal_scene() {
+  return nlohmann::json::parse(R"({
+    "sensors": [{"name": "ir", "position": [0, -50, 5], "look_at": [0, 0, 3], "fov_deg": 30,
+                 "width": 16, "height": 12, "bands": ["mwir", "8:12",
+                 {"name": "custom", "response": [[3.0, 0.0], [4.0, 1.0], [5.0, 0.0]]}]}],
+    "clouds": [{"type": "homogeneous", "min": [-5, -5, 0], "max": [5, 5, 6],
+                "wavelengths_um": [4, 10], "sigma_a": [0.1, 0.2], "sigma_s": [0.05, 0.01],
+                "g": [0.5, 0.3], "temperature": 300}],
+    "surfaces": [{"type": "ground", "temperature": 290, "emissivity": 0.95},
+                 {"type": "box", "min": [-1, 0, 0], "max": [1, 2, 2], "temperature": 330}],
+    "sky": {"temperature": 250},
+    "render": {"samples_per_pixel": 2, "seed": 7, "threads": 1}
+  })");
+}
+
+// Loads `doc` and returns the error message ("" if it loaded).
+std::string load_error(const nlohmann::json& doc) {
+  try {
+    parse_scene(doc, "scene.json");
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.file(), "scene.json");
+    return e.what();
+  }
+  return "";
+}
+
+TEST(SceneLoader, LoadsAValidScene) {
+  const Scene s = parse_scene(minimal_scene(), "dir/scene.json");
+  ASSERT_EQ(s.sensors.size(), 1u);
+  EXPECT_EQ(s.sensors[0].bands.size(), 3u);
+  EXPECT_EQ(s.sensors[0].bands[1].name(), "8:12");
+  EXPECT_EQ(s.sensors[0].camera.width(), 16);
+  ASSERT_TRUE(s.medium);
+  EXPECT_EQ(s.medium->wavelengths_um().size(), 2u);
+  EXPECT_EQ(s.surfaces.size(), 2u);
+  EXPECT_EQ(s.sky.temperature_k, 250);
+  EXPECT_EQ(s.settings.samples_per_pixel, 2);
+  EXPECT_EQ(s.settings.seed, 7u);
+}
+
+TEST(SceneLoader, MissingFieldNamesItsPath) {
+  auto doc = minimal_scene();
+  doc["sensors"][0].erase("fov_deg");
+  const std::string m = load_error(doc);
+  EXPECT_NE(m.find("/sensors/0/fov_deg"), std::string::npos) << m;
+  EXPECT_NE(m.find("missing"), std::string::npos) << m;
+}
+
+TEST(SceneLoader, WrongTypeNamesItsPath) {
+  auto doc = minimal_scene();
+  doc["surfaces"][0]["temperature"] = "hot";
+  const std::string m = load_error(doc);
+  EXPECT_NE(m.find("/surfaces/0/temperature"), std::string::npos) << m;
+  EXPECT_NE(m.find("expected a number"), std::string::npos) << m;
+}
+
+TEST(SceneLoader, NegativeCoefficientIsRejected) {
+  auto doc = minimal_scene();
+  doc["clouds"][0]["sigma_a"][1] = -0.2;
+  const std::string m = load_error(doc);
+  EXPECT_NE(m.find("/clouds/0/sigma_a[1]"), std::string::npos) << m;
+  EXPECT_NE(m.find(">= 0"), std::string::npos) << m;
+}
+
+TEST(SceneLoader, AsymmetryOutsideOpenIntervalIsRejected) {
+  auto doc = minimal_scene();
+  doc["clouds"][0]["g"][0] = 1.0;
+  const std::string m = load_error(doc);
+  EXPECT_NE(m.find("/clouds/0/g[0]"), std::string::npos) << m;
+  EXPECT_NE(m.find("(-1, 1)"), std::string::npos) << m;
+}
+
+TEST(SceneLoader, UnknownKeyIsAnError) {
+  auto doc = minimal_scene();
+  doc["sensors"][0]["fov"] = 30;
+  const std::string m = load_error(doc);
+  EXPECT_NE(m.find("/sensors/0/fov"), std::string::npos) << m;
+  EXPECT_NE(m.find("unknown field"), std::string::npos) << m;
+  EXPECT_NE(m.find("fov_deg"), std::string::npos) << m;  // suggests what was meant
+}
+
+TEST(SceneLoader, BadBandAndRangesAreRejected) {
+  auto doc = minimal_scene();
+  doc["sensors"][0]["bands"][1] = "12:8";
+  EXPECT_NE(load_error(doc).find("/sensors/0/bands/1"), std::string::npos);
+  doc = minimal_scene();
+  doc["sensors"][0]["width"] = 0;
+  EXPECT_NE(load_error(doc).find("/sensors/0/width"), std::string::npos);
+  doc = minimal_scene();
+  doc["surfaces"][0]["emissivity"] = 1.5;
+  EXPECT_NE(load_error(doc).find("/surfaces/0/emissivity"), std::string::npos);
+  doc = minimal_scene();
+  doc["render"]["method"] = "magic";
+  EXPECT_NE(load_error(doc).find("/render/method"), std::string::npos);
+  doc = minimal_scene();
+  doc["sensors"] = nlohmann::json::array();
+  EXPECT_NE(load_error(doc).find("/sensors"), std::string::npos);
+}
+
+TEST(SceneLoader, SyntaxErrorNamesLineAndColumn) {
+  const auto path = std::filesystem::temp_directory_path() / "obscura_syntax_error.json";
+  {
+    std::ofstream f(path);
+    f << "{\n  \"sensors\": [\n    {\"name\": \"a\",,}\n  ]\n}\n";
+  }
+  try {
+    load_scene(path);
+    FAIL();
+  } catch (const InputError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find(path.string()), std::string::npos) << m;
+    EXPECT_NE(m.find("line 3"), std::string::npos) << m;
+  }
+  std::filesystem::remove(path);
+}
+
+TEST(SceneLoader, UnreadableFileIsAnError) {
+  try {
+    load_scene("/nonexistent/scene.json");
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("/nonexistent/scene.json"), std::string::npos);
+    EXPECT_NE(std::string(e.what()).find("cannot read"), std::string::npos);
+  }
+}
+
+}  // namespace
+}  // namespace obscura
