@@ -133,14 +133,12 @@ TEST_F(VdbKeyframeTest, RoundTripIsExact) {
     EXPECT_EQ(std::memcmp(back.channel(c), grid.channel(c), grid.dims().count() * sizeof(float)), 0)
         << grid.channel_name(c);
 
-  // The transform stores voxel_size·R, so placement comes back to rounding.
+  // The exact placement travels beside the transform ("placement" metadata):
+  // origin, voxel size and rotation come back bit for bit.
   const GridPlacement& p = back.placement();
-  EXPECT_NEAR(p.voxel_size_m, 0.37, 1e-15);
-  for (int a = 0; a < 3; ++a) {
-    EXPECT_NEAR(p.origin_m[a], grid.placement().origin_m[a], 1e-12);
-    for (int b = 0; b < 3; ++b)
-      EXPECT_NEAR(p.rotation.m[a][b], grid.placement().rotation.m[a][b], 1e-14);
-  }
+  EXPECT_EQ(p.voxel_size_m, grid.placement().voxel_size_m);
+  EXPECT_EQ(p.origin_m, grid.placement().origin_m);
+  EXPECT_EQ(p.rotation, grid.placement().rotation);
   // A world point maps to the same index either way.
   const Vec3 w = grid.placement().index_to_world({3.25, 6.0, 1.5});
   const Vec3 i = p.world_to_index(w);
@@ -215,10 +213,9 @@ TEST_F(VdbKeyframeTest, SingleVoxelRoundTrip) {
   EXPECT_EQ(b.g(0)[0], -0.3f);
   EXPECT_EQ(b.temperature()[0], 300.0f);
   EXPECT_EQ(kf.time_s, 0.0);
-  // OpenVDB re-simplifies the map on reading: equal to a few ulp, not exact.
-  EXPECT_NEAR(b.placement().voxel_size_m, 0.1, 1e-15);
+  EXPECT_EQ(b.placement().voxel_size_m, 0.1);
   EXPECT_EQ(b.placement().rotation, Mat3::identity());
-  EXPECT_NEAR(b.placement().origin_m.z, 3.0, 1e-15);
+  EXPECT_EQ(b.placement().origin_m.z, 3.0);
 }
 
 TEST_F(VdbKeyframeTest, InspectSummarises) {
@@ -387,6 +384,22 @@ TEST_F(VdbKeyframeErrorTest, NonUniformOrMismatchedTransform) {
     find_grid(g, "sigma_a_002")->transform().postTranslate(openvdb::Vec3d(0.5, 0, 0));
   });
   expect_read_error(bad_, "sigma_a_002");
+}
+
+TEST_F(VdbKeyframeErrorTest, PlacementRecordMustMatchTransform) {
+  // Moving every grid but not the exact placement record is an inconsistent edit.
+  edit([](openvdb::GridPtrVec& g, openvdb::MetaMap&) {
+    for (auto& grid : g) grid->transform().postTranslate(openvdb::Vec3d(3.0, 0, 0));
+  });
+  expect_read_error(bad_, "placement");
+  edit([](openvdb::GridPtrVec&, openvdb::MetaMap& m) {
+    m.removeMeta("placement");
+    m.insertMeta("placement", openvdb::StringMetadata("origin_m=1,2"));
+  });
+  expect_read_error(bad_, "placement");
+  // Files from other tools carry no record: the transform alone places the grid.
+  edit([](openvdb::GridPtrVec&, openvdb::MetaMap& m) { m.removeMeta("placement"); });
+  EXPECT_NO_THROW(read_cloud_keyframe(bad_));
 }
 
 TEST_F(VdbKeyframeErrorTest, UnreadableAndNonVdbFiles) {

@@ -10,6 +10,7 @@
 #include <charconv>
 #include <cmath>
 #include <mutex>
+#include <optional>
 #include <set>
 #include <stdexcept>
 #include <system_error>
@@ -37,7 +38,7 @@ const std::set<std::string>& reserved_keys() {
   static const std::set<std::string> keys = {
       "obscura_format",    "obscura_format_version", "time_s",
       "wavelengths_um",    "spectral_count",         "dims",
-      "coefficient_units", "temperature_units"};
+      "coefficient_units", "temperature_units",      "placement"};
   return keys;
 }
 
@@ -166,6 +167,59 @@ std::string format_wavelengths(const std::vector<double>& w) {
     out += fmt::format("{:.17g}", w[k]);  // 17 significant digits round-trip any double
   }
   return out;
+}
+
+// The placement as exact decimal text ("origin_m=x,y,z;voxel_size_m=s;rotation=r00,...,r22",
+// 17 significant digits): OpenVDB re-simplifies transforms on read, which moves
+// their last bits, so the exact values travel beside the transform.
+std::string format_placement(const GridPlacement& p) {
+  std::string out = fmt::format("origin_m={:.17g},{:.17g},{:.17g};voxel_size_m={:.17g};rotation=",
+                                p.origin_m.x, p.origin_m.y, p.origin_m.z, p.voxel_size_m);
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) out += fmt::format("{}{:.17g}", r + c == 0 ? "" : ",", p.rotation.m[r][c]);
+  return out;
+}
+
+// Parses format_placement's text; nullopt if it is malformed.
+std::optional<GridPlacement> parse_placement(const std::string& text) {
+  std::vector<double> v;
+  std::size_t pos = 0;
+  for (const char* key : {"origin_m=", ";voxel_size_m=", ";rotation="}) {
+    const std::string k(key);
+    if (text.compare(pos, k.size(), k) != 0) return std::nullopt;
+    pos += k.size();
+    const int count = k == ";voxel_size_m=" ? 1 : (k == "origin_m=" ? 3 : 9);
+    for (int i = 0; i < count; ++i) {
+      if (i > 0) {
+        if (pos >= text.size() || text[pos] != ',') return std::nullopt;
+        ++pos;
+      }
+      double x = 0;
+      const auto [end, ec] = std::from_chars(text.data() + pos, text.data() + text.size(), x);
+      if (ec != std::errc()) return std::nullopt;
+      pos = static_cast<std::size_t>(end - text.data());
+      v.push_back(x);
+    }
+  }
+  if (pos != text.size()) return std::nullopt;
+  GridPlacement p;
+  p.origin_m = {v[0], v[1], v[2]};
+  p.voxel_size_m = v[3];
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) p.rotation.m[r][c] = v[4 + 3 * r + c];
+  return p;
+}
+
+// True when two placements map every voxel of the grid to the same world
+// point within `tolerance` voxels.
+bool placements_agree(const GridPlacement& a, const GridPlacement& b, const GridDims& d,
+                      double tolerance) {
+  for (int corner = 0; corner < 8; ++corner) {
+    const Vec3 idx((corner & 1) ? d.nx : -1, (corner & 2) ? d.ny : -1, (corner & 4) ? d.nz : -1);
+    if (length(a.index_to_world(idx) - b.index_to_world(idx)) > tolerance * a.voxel_size_m)
+      return false;
+  }
+  return true;
 }
 
 std::vector<double> parse_wavelengths(const std::string& text, const std::string& file) {
@@ -393,7 +447,18 @@ ReadResult read_keyframe(const std::filesystem::path& path) {
                        "grid transform differs from the 'temperature' grid's; all grids of a "
                        "keyframe must share one placement");
 
-  auto grid = std::make_shared<VoxelGrid>(dims, placement, std::move(wavelengths), file);
+  // Prefer the exact placement written beside the transform, when it agrees with it.
+  GridPlacement exact_placement = placement;
+  if (auto m = result.file_metadata->getMetadata<openvdb::StringMetadata>("placement")) {
+    const auto parsed = parse_placement(m->value());
+    if (!parsed)
+      throw InputError(file, "placement", fmt::format("'{}' is not a placement record", m->value()));
+    if (!placements_agree(*parsed, placement, dims, 1e-6))
+      throw InputError(file, "placement",
+                       "disagrees with the grids' transform (the file was edited inconsistently)");
+    exact_placement = *parsed;
+  }
+  auto grid = std::make_shared<VoxelGrid>(dims, exact_placement, std::move(wavelengths), file);
   for (int c = 0; c < grid->channel_count(); ++c)
     if (names[c] != grid->channel_name(c))  // the list above must mirror channel_name
       throw std::logic_error("vdb_keyframe: channel name mismatch for " + names[c]);
@@ -453,6 +518,7 @@ void write_cloud_keyframe(const std::filesystem::path& path, const VoxelGrid& gr
   meta.insertMeta("dims", openvdb::Vec3IMetadata(openvdb::Vec3i(d.nx, d.ny, d.nz)));
   meta.insertMeta("coefficient_units", openvdb::StringMetadata(kCoefficientUnits));
   meta.insertMeta("temperature_units", openvdb::StringMetadata(kTemperatureUnits));
+  meta.insertMeta("placement", openvdb::StringMetadata(format_placement(grid.placement())));
   for (const auto& [key, value] : extra_metadata)
     meta.insertMeta(key, openvdb::StringMetadata(value));
 
