@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 #include <openvdb/openvdb.h>
 
+#include "support/temp_dir_test.h"
 #include "obscura/io/vdb_keyframe.h"
 #include "obscura/medium/gaussian_puff.h"
 
@@ -24,17 +25,8 @@ struct Result {
   std::string out, err;
 };
 
-class CliTest : public ::testing::Test {
+class CliTest : public testing::TempDirTest {
  protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() / (std::string("obscura_cli_") + info->name() + "_" +
-                                         std::to_string(::getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
   Result run(const std::string& args) {
     const auto out = dir_ / "stdout.txt", err = dir_ / "stderr.txt";
     const std::string cmd = std::string(OBSCURA_CLI_PATH) + " " + args + " >" + out.string() +
@@ -98,7 +90,6 @@ class CliTest : public ::testing::Test {
     EXPECT_NE(r.err.find(field), std::string::npos) << r.err;
     if (fs::exists(out_dir)) EXPECT_TRUE(fs::is_empty(out_dir)) << "partial output left behind";
   }
-  fs::path dir_;
 };
 
 TEST_F(CliTest, VersionAndHelp) {

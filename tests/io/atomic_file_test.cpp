@@ -1,3 +1,4 @@
+#include "support/temp_dir_test.h"
 #include "obscura/io/atomic_file.h"
 
 #include <gtest/gtest.h>
@@ -14,14 +15,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-class AtomicFileTest : public ::testing::Test {
+class AtomicFileTest : public testing::TempDirTest {
  protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::path(::testing::TempDir()) / (std::string("obscura_atomic_") + info->name());
-    fs::remove_all(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
 
   static std::string read(const fs::path& p) {
     std::ifstream in(p, std::ios::binary);
@@ -33,8 +28,6 @@ class AtomicFileTest : public ::testing::Test {
     std::ofstream out(p, std::ios::binary);
     out << s;
   }
-
-  fs::path dir_;
 };
 
 TEST_F(AtomicFileTest, FinalFileAppearsOnlyOnCommit) {

@@ -1,3 +1,4 @@
+#include "support/temp_dir_test.h"
 #include "obscura/io/exr_writer.h"
 
 #include <gtest/gtest.h>
@@ -15,17 +16,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-class ExrWriterTest : public ::testing::Test {
- protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::path(::testing::TempDir()) / (std::string("obscura_exr_") + info->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  fs::path dir_;
-};
+class ExrWriterTest : public testing::TempDirTest {};
 
 // Bitwise equality, so NaN payloads, -0 and denormals are checked too.
 bool same_bits(float a, float b) { return std::memcmp(&a, &b, sizeof a) == 0; }

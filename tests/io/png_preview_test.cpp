@@ -1,3 +1,4 @@
+#include "support/temp_dir_test.h"
 #include "obscura/io/png_preview.h"
 
 #include <gtest/gtest.h>
@@ -14,17 +15,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-class PngPreviewTest : public ::testing::Test {
- protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::path(::testing::TempDir()) / (std::string("obscura_png_") + info->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  fs::path dir_;
-};
+class PngPreviewTest : public testing::TempDirTest {};
 
 std::array<std::uint8_t, 3> pixel(const PreviewRaster& r, int x, int y) {
   const size_t i = (static_cast<size_t>(y) * r.width + x) * 3;

@@ -1,3 +1,4 @@
+#include "support/temp_dir_test.h"
 #include "obscura/io/vdb_keyframe.h"
 
 #include <gtest/gtest.h>
@@ -24,17 +25,12 @@ namespace {
 
 namespace fs = std::filesystem;
 
-class VdbKeyframeTest : public ::testing::Test {
+class VdbKeyframeTest : public testing::TempDirTest {
  protected:
   void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() /
-           ("obscura_vdb_keyframe_" + std::to_string(::getpid()) + "_" + info->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
+    TempDirTest::SetUp();
     openvdb::initialize();  // the tests write files by hand with OpenVDB directly
   }
-  void TearDown() override { fs::remove_all(dir_); }
 
   // Names of everything in dir_, to check that failed writes leave nothing.
   std::vector<std::string> dir_entries() const {
@@ -43,8 +39,6 @@ class VdbKeyframeTest : public ::testing::Test {
     std::sort(names.begin(), names.end());
     return names;
   }
-
-  fs::path dir_;
 };
 
 // A 13x7x5 grid (not a multiple of the 8³ VDB leaf) with 3 spectral samples,
