@@ -1,5 +1,6 @@
 #include "obscura/render/emission_absorption.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 
@@ -30,6 +31,18 @@ struct SegmentIntegrand {
     for (int j = 0; j < count; ++j)
       out[j] = std::exp(-sigma_t[j].integral(s)) * sigma_a[j](s) * (*planck[j])(t);
   }
+  // The same, keeping the source σa B and the attenuation e^{−τ} apart.
+  void split(double s, double* out, double* source, double* attenuation) {
+    ++evals;
+    const double t = temperature(s);
+    for (int j = 0; j < count; ++j) {
+      source[j] = sigma_a[j](s) * (*planck[j])(t);
+      attenuation[j] = std::exp(-sigma_t[j].integral(s));
+      out[j] = attenuation[j] * source[j];
+    }
+  }
+  // σa B at the segment start, where e^{−τ} = 1.
+  double source_at_start(int j) const { return sigma_a[j].c[0] * (*planck[j])(temperature.c[0]); }
 };
 
 // Adaptive Simpson on [a, b] for all nodes at once; bisects until every node's
@@ -73,13 +86,21 @@ void integrate_emission_absorption(const Medium* medium, const Ray& ray, double 
   const auto& node = nodes.nodes();
   SegmentIntegrand integrand;
   std::array<int, kMaxSpectralNodes> active;  // node index of each integrand slot
-  NodeArray emitted, delta_tau;
+  NodeArray emitted, delta_tau, segment_transmittance;
+  NodeArray start_source;  // per integrand slot: σa B at s = 0, or −1 if unknown
+  // The source σa B at the end of the previous segment, per node: σa and T are
+  // continuous across cell faces, so it is the next segment's starting value.
+  NodeArray source_end;
+  std::array<bool, kMaxSpectralNodes> source_end_valid{};
+  double previous_end = -1.0;
   std::uint64_t segments = 0;
 
   medium->trace_segments(ray, 0.0, t_max, [&](const MediumSegment& seg) {
     ++segments;
     const double h = seg.t_end - seg.t_begin;
     const bool isothermal = seg.temperature.is_constant();
+    const bool contiguous = seg.t_begin == previous_end;
+    previous_end = seg.t_end;
     integrand.count = 0;
     for (int i = 0; i < count; ++i) {
       const SpectralNode& nd = node[i];
@@ -88,6 +109,9 @@ void integrate_emission_absorption(const Medium* medium, const Ray& ray, double 
       const Cubic st = sa + ss;
       delta_tau[i] = st.integral(h);
       emitted[i] = 0.0;
+      segment_transmittance[i] = -1.0;  // computed below
+      const bool reuse = contiguous && source_end_valid[i];
+      source_end_valid[i] = false;
       if (sa.is_zero()) continue;
       if (isothermal && ss.is_zero()) {
         // σa = σt and B constant: ∫ e^{−τ} σt B ds = B (1 − e^{−Δτ}) exactly.
@@ -99,21 +123,53 @@ void integrate_emission_absorption(const Medium* medium, const Ray& ray, double 
       integrand.sigma_t[j] = st;
       integrand.planck[j] = &nd.planck;
       active[j] = i;
+      start_source[j] = reuse ? source_end[i] : -1.0;
     }
     if (integrand.count > 0) {
       integrand.temperature = seg.temperature;
-      NodeArray fa, fm, fb, whole, result{};
-      integrand(0.0, fa.data());
+      const int n = integrand.count;
+      // First level of adaptive Simpson on [0, h] with its two halves: five
+      // points, of which s = 0 needs no exponential (τ = 0) and its source is
+      // usually the previous segment's end value.
+      NodeArray f0, fq1, fm, fq3, fh, src, att, whole, left, right, result;
+      std::fill_n(result.begin(), n, 0.0);
+      for (int j = 0; j < n; ++j)
+        f0[j] = start_source[j] >= 0.0 ? start_source[j] : integrand.source_at_start(j);
+      integrand(0.25 * h, fq1.data());
       integrand(0.5 * h, fm.data());
-      integrand(h, fb.data());
-      for (int j = 0; j < integrand.count; ++j) whole[j] = h / 6.0 * (fa[j] + 4.0 * fm[j] + fb[j]);
-      adaptive_simpson(integrand, 0.0, h, fa.data(), fm.data(), fb.data(), whole.data(),
-                       relative_tolerance, 0, result.data());
-      for (int j = 0; j < integrand.count; ++j) emitted[active[j]] = result[j];
+      integrand(0.75 * h, fq3.data());
+      integrand.split(h, fh.data(), src.data(), att.data());
+      bool converged = true;
+      for (int j = 0; j < n; ++j) {
+        whole[j] = h / 6.0 * (f0[j] + 4.0 * fm[j] + fh[j]);
+        left[j] = h / 12.0 * (f0[j] + 4.0 * fq1[j] + fm[j]);
+        right[j] = h / 12.0 * (fm[j] + 4.0 * fq3[j] + fh[j]);
+        const double diff = left[j] + right[j] - whole[j];
+        if (std::abs(diff) > 15.0 * relative_tolerance * std::abs(left[j] + right[j])) converged = false;
+      }
+      if (converged) {
+        for (int j = 0; j < n; ++j) {
+          const double two = left[j] + right[j];
+          result[j] = two + (two - whole[j]) / 15.0;
+        }
+      } else {
+        adaptive_simpson(integrand, 0.0, 0.5 * h, f0.data(), fq1.data(), fm.data(), left.data(),
+                         relative_tolerance, 1, result.data());
+        adaptive_simpson(integrand, 0.5 * h, h, fm.data(), fq3.data(), fh.data(), right.data(),
+                         relative_tolerance, 1, result.data());
+      }
+      for (int j = 0; j < n; ++j) {
+        const int i = active[j];
+        emitted[i] = result[j];
+        source_end[i] = src[j];
+        source_end_valid[i] = true;
+        segment_transmittance[i] = att[j];  // e^{−τ(h)}, already computed
+      }
     }
     for (int i = 0; i < count; ++i) {
       radiance[i] += transmittance[i] * emitted[i];
-      transmittance[i] *= std::exp(-delta_tau[i]);
+      transmittance[i] *=
+          segment_transmittance[i] >= 0.0 ? segment_transmittance[i] : std::exp(-delta_tau[i]);
     }
     return true;
   });
