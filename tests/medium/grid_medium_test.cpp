@@ -35,11 +35,13 @@ TEST(GridMedium, SegmentCubicsEqualPointEvaluation) {
         EXPECT_LE(seg.t_begin, seg.t_end);
         const double s = (seg.t_end - seg.t_begin) * rng.uniform();
         medium.coefficients_at(ray.at(seg.t_begin + s), point);
+        EXPECT_EQ(seg.component_count, 1);
+        const MediumComponent& c = seg.components[0];
         for (int k = 0; k < 2; ++k) {
-          EXPECT_NEAR(seg.sigma_a[k](s), point.sigma_a[k], 1e-9);
-          EXPECT_NEAR(seg.sigma_s[k](s), point.sigma_s[k], 1e-9);
+          EXPECT_NEAR(c.sigma_a[k](s), point.sigma_a[k], 1e-9);
+          EXPECT_NEAR(c.sigma_s[k](s), point.sigma_s[k], 1e-9);
         }
-        EXPECT_NEAR(seg.temperature(s), point.temperature_k, 1e-8);
+        EXPECT_NEAR(c.temperature(s), point.temperature_k, 1e-8);
         ++checked;
         return true;
       });

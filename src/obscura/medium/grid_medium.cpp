@@ -81,10 +81,14 @@ void GridMedium::trace_segments(const Ray& ray, double t_min, double t_max,
   std::vector<Cubic> cubics(2 * static_cast<std::size_t>(ns));
   Cubic* sig_a = cubics.data();
   Cubic* sig_s = cubics.data() + ns;
+  MediumComponent component;
+  component.sigma_a = sig_a;
+  component.sigma_s = sig_s;
   MediumSegment seg;
-  seg.sigma_a = sig_a;
-  seg.sigma_s = sig_s;
   seg.spectral_count = ns;
+  seg.components = &component;
+  seg.component_count = 1;
+  double previous_end = -1.0;
 
   const int bsize = majorants_.block_size();
   const auto& bd = majorants_.block_dims();
@@ -152,9 +156,11 @@ void GridMedium::trace_segments(const Ray& ray, double t_min, double t_max,
         sig_a[s] = combine(g.sigma_a(s));
         sig_s[s] = combine(g.sigma_s(s));
       }
-      seg.temperature = combine(g.temperature());
+      component.temperature = combine(g.temperature());
       seg.t_begin = t0;
       seg.t_end = t1;
+      seg.continuous_with_previous = t0 == previous_end;
+      previous_end = t1;
       if (!visit(seg)) return;
     }
   }

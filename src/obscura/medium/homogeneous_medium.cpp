@@ -66,13 +66,16 @@ void HomogeneousMedium::trace_segments(const Ray& ray, double t_min, double t_ma
                                        const SegmentVisitor& visit) const {
   if (!box_.intersect(ray, t_min, t_max) || !(t_max > t_min)) return;
   const int n = static_cast<int>(wavelengths_um_.size());
+  MediumComponent component;
+  component.sigma_a = cubics_.data();
+  component.sigma_s = cubics_.data() + n;
+  component.temperature = Cubic::constant(values_.temperature_k);
   MediumSegment seg;
   seg.t_begin = t_min;
   seg.t_end = t_max;
-  seg.sigma_a = cubics_.data();
-  seg.sigma_s = cubics_.data() + n;
-  seg.temperature = Cubic::constant(values_.temperature_k);
   seg.spectral_count = n;
+  seg.components = &component;
+  seg.component_count = 1;
   visit(seg);
 }
 

@@ -19,16 +19,27 @@ struct MediumPoint {
   double temperature_k = 0.0;
 };
 
+// One medium's share of a segment: its coefficients and temperature as cubics
+// in s = t − t_begin. Overlapping clouds give one component each: extinction
+// adds, and each component emits σa B(T) at its own temperature.
+struct MediumComponent {
+  const Cubic* sigma_a = nullptr;  // spectral_count cubics, 1/m
+  const Cubic* sigma_s = nullptr;  // spectral_count cubics, 1/m
+  Cubic temperature;               // K
+};
+
 // A piece [t_begin, t_end] of a ray (t in metres along a unit direction) over
 // which every property is a cubic polynomial in s = t − t_begin. Outside the
 // segments a medium reports, its coefficients are zero.
 struct MediumSegment {
   double t_begin = 0.0;
   double t_end = 0.0;
-  const Cubic* sigma_a = nullptr;  // spectral_count cubics, 1/m
-  const Cubic* sigma_s = nullptr;  // spectral_count cubics, 1/m
-  Cubic temperature;               // K
   int spectral_count = 0;
+  const MediumComponent* components = nullptr;
+  int component_count = 0;
+  // True when the fields are continuous from the previous segment's end into
+  // this one (neighbouring cells of one grid), so values there can be reused.
+  bool continuous_with_previous = false;
 };
 
 class Medium {

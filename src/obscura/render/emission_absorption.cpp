@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <vector>
 
 #include "obscura/core/error.h"
 
@@ -16,36 +17,57 @@ constexpr int kMaxDepth = 16;
 
 using NodeArray = std::array<double, kMaxSpectralNodes>;
 
-// The emission integrand e^{−τ(s)} σa(s) B(T(s)) for the nodes still being integrated.
+// The emission integrand e^{−τ(s)} Σ_c σa,c(s) B(T_c(s)) for the spectral nodes
+// still being integrated ("slots"), summed over the segment's components.
 struct SegmentIntegrand {
-  int count = 0;
-  std::array<Cubic, kMaxSpectralNodes> sigma_a;
+  int count = 0;       // slots
+  int components = 0;  // overlapping media
   std::array<Cubic, kMaxSpectralNodes> sigma_t;
   std::array<const PlanckAtWavelength*, kMaxSpectralNodes> planck;
-  Cubic temperature;
+  std::vector<Cubic> sigma_a;      // [component * kMaxSpectralNodes + slot]
+  std::vector<Cubic> temperature;  // per component
   std::uint64_t evals = 0;
 
-  void operator()(double s, double* out) {
-    ++evals;
-    const double t = temperature(s);
-    for (int j = 0; j < count; ++j)
-      out[j] = std::exp(-sigma_t[j].integral(s)) * sigma_a[j](s) * (*planck[j])(t);
-  }
-  // The same, keeping the source σa B and the attenuation e^{−τ} apart.
-  void split(double s, double* out, double* source, double* attenuation) {
-    ++evals;
-    const double t = temperature(s);
-    for (int j = 0; j < count; ++j) {
-      source[j] = sigma_a[j](s) * (*planck[j])(t);
-      attenuation[j] = std::exp(-sigma_t[j].integral(s));
-      out[j] = attenuation[j] * source[j];
+  void prepare(int component_count) {
+    components = component_count;
+    if (static_cast<int>(temperature.size()) < component_count) {
+      temperature.resize(component_count);
+      sigma_a.resize(static_cast<std::size_t>(component_count) * kMaxSpectralNodes);
     }
   }
-  // σa B at the segment start, where e^{−τ} = 1.
-  double source_at_start(int j) const { return sigma_a[j].c[0] * (*planck[j])(temperature.c[0]); }
+  Cubic& sa(int c, int j) { return sigma_a[static_cast<std::size_t>(c) * kMaxSpectralNodes + j]; }
+  const Cubic& sa(int c, int j) const {
+    return sigma_a[static_cast<std::size_t>(c) * kMaxSpectralNodes + j];
+  }
+
+  // The source Σ_c σa,c B(T_c) at s, per slot.
+  void source(double s, double* out) const {
+    for (int j = 0; j < count; ++j) out[j] = 0.0;
+    for (int c = 0; c < components; ++c) {
+      const double t = temperature[c](s);
+      for (int j = 0; j < count; ++j) {
+        const double a = sa(c, j)(s);
+        if (a != 0.0) out[j] += a * (*planck[j])(t);
+      }
+    }
+  }
+  void operator()(double s, double* out) {
+    ++evals;
+    source(s, out);
+    for (int j = 0; j < count; ++j) out[j] *= std::exp(-sigma_t[j].integral(s));
+  }
+  // The same, also returning the source and the attenuation e^{−τ} apart.
+  void split(double s, double* out, double* src, double* attenuation) {
+    ++evals;
+    source(s, src);
+    for (int j = 0; j < count; ++j) {
+      attenuation[j] = std::exp(-sigma_t[j].integral(s));
+      out[j] = attenuation[j] * src[j];
+    }
+  }
 };
 
-// Adaptive Simpson on [a, b] for all nodes at once; bisects until every node's
+// Adaptive Simpson on [a, b] for all slots at once; bisects until every slot's
 // two-level estimates agree within 15 ε |I| (the Richardson factor of Simpson's
 // rule), then adds the Richardson correction.
 void adaptive_simpson(SegmentIntegrand& f, double a, double b, const double* fa, const double* fm,
@@ -74,6 +96,12 @@ void adaptive_simpson(SegmentIntegrand& f, double a, double b, const double* fa,
   adaptive_simpson(f, m, b, fm, frm.data(), fb, right.data(), eps, depth + 1, result);
 }
 
+// A component's cubic at a spectral node: linear in wavelength between the
+// medium's samples.
+inline Cubic at_node(const Cubic* per_sample, const SpectralNode& nd) {
+  return per_sample[nd.sample0] * (1.0 - nd.frac) + per_sample[nd.sample1] * nd.frac;
+}
+
 }  // namespace
 
 void integrate_emission_absorption(const Medium* medium, const Ray& ray, double t_max,
@@ -87,54 +115,61 @@ void integrate_emission_absorption(const Medium* medium, const Ray& ray, double 
   SegmentIntegrand integrand;
   std::array<int, kMaxSpectralNodes> active;  // node index of each integrand slot
   NodeArray emitted, delta_tau, segment_transmittance;
-  NodeArray start_source;  // per integrand slot: σa B at s = 0, or −1 if unknown
-  // The source σa B at the end of the previous segment, per node: σa and T are
-  // continuous across cell faces, so it is the next segment's starting value.
+  NodeArray start_source;  // per slot: source at s = 0, or −1 if unknown
+  // The source at the end of the previous segment, per node: where the fields
+  // are continuous across the face it is the next segment's starting value.
   NodeArray source_end;
   std::array<bool, kMaxSpectralNodes> source_end_valid{};
-  double previous_end = -1.0;
   std::uint64_t segments = 0;
 
   medium->trace_segments(ray, 0.0, t_max, [&](const MediumSegment& seg) {
     ++segments;
     const double h = seg.t_end - seg.t_begin;
-    const bool isothermal = seg.temperature.is_constant();
-    const bool contiguous = seg.t_begin == previous_end;
-    previous_end = seg.t_end;
+    const int nc = seg.component_count;
+    integrand.prepare(nc);
     integrand.count = 0;
     for (int i = 0; i < count; ++i) {
       const SpectralNode& nd = node[i];
-      const Cubic sa = seg.sigma_a[nd.sample0] * (1.0 - nd.frac) + seg.sigma_a[nd.sample1] * nd.frac;
-      const Cubic ss = seg.sigma_s[nd.sample0] * (1.0 - nd.frac) + seg.sigma_s[nd.sample1] * nd.frac;
-      const Cubic st = sa + ss;
+      Cubic st;
+      bool emits = false, scatters = false;
+      for (int c = 0; c < nc; ++c) {
+        const Cubic sa = at_node(seg.components[c].sigma_a, nd);
+        const Cubic ss = at_node(seg.components[c].sigma_s, nd);
+        st += sa + ss;
+        emits = emits || !sa.is_zero();
+        scatters = scatters || !ss.is_zero();
+      }
       delta_tau[i] = st.integral(h);
       emitted[i] = 0.0;
       segment_transmittance[i] = -1.0;  // computed below
-      const bool reuse = contiguous && source_end_valid[i];
+      const bool reuse = seg.continuous_with_previous && source_end_valid[i];
       source_end_valid[i] = false;
-      if (sa.is_zero()) continue;
-      if (isothermal && ss.is_zero()) {
+      if (!emits) continue;
+      if (nc == 1 && !scatters && seg.components[0].temperature.is_constant()) {
         // σa = σt and B constant: ∫ e^{−τ} σt B ds = B (1 − e^{−Δτ}) exactly.
-        emitted[i] = nd.planck(seg.temperature.c[0]) * -std::expm1(-delta_tau[i]);
+        emitted[i] = nd.planck(seg.components[0].temperature.c[0]) * -std::expm1(-delta_tau[i]);
         continue;
       }
       const int j = integrand.count++;
-      integrand.sigma_a[j] = sa;
+      for (int c = 0; c < nc; ++c) integrand.sa(c, j) = at_node(seg.components[c].sigma_a, nd);
       integrand.sigma_t[j] = st;
       integrand.planck[j] = &nd.planck;
       active[j] = i;
       start_source[j] = reuse ? source_end[i] : -1.0;
     }
     if (integrand.count > 0) {
-      integrand.temperature = seg.temperature;
+      for (int c = 0; c < nc; ++c) integrand.temperature[c] = seg.components[c].temperature;
       const int n = integrand.count;
       // First level of adaptive Simpson on [0, h] with its two halves: five
       // points, of which s = 0 needs no exponential (τ = 0) and its source is
       // usually the previous segment's end value.
       NodeArray f0, fq1, fm, fq3, fh, src, att, whole, left, right, result;
       std::fill_n(result.begin(), n, 0.0);
+      bool need_start = false;
+      for (int j = 0; j < n; ++j) need_start = need_start || start_source[j] < 0.0;
+      if (need_start) integrand.source(0.0, f0.data());
       for (int j = 0; j < n; ++j)
-        f0[j] = start_source[j] >= 0.0 ? start_source[j] : integrand.source_at_start(j);
+        if (start_source[j] >= 0.0) f0[j] = start_source[j];
       integrand(0.25 * h, fq1.data());
       integrand(0.5 * h, fm.data());
       integrand(0.75 * h, fq3.data());
@@ -145,7 +180,8 @@ void integrate_emission_absorption(const Medium* medium, const Ray& ray, double 
         left[j] = h / 12.0 * (f0[j] + 4.0 * fq1[j] + fm[j]);
         right[j] = h / 12.0 * (fm[j] + 4.0 * fq3[j] + fh[j]);
         const double diff = left[j] + right[j] - whole[j];
-        if (std::abs(diff) > 15.0 * relative_tolerance * std::abs(left[j] + right[j])) converged = false;
+        if (std::abs(diff) > 15.0 * relative_tolerance * std::abs(left[j] + right[j]))
+          converged = false;
       }
       if (converged) {
         for (int j = 0; j < n; ++j) {
