@@ -23,6 +23,11 @@ struct Cubic {
   Cubic operator*(double k) const { return {{c[0] * k, c[1] * k, c[2] * k, c[3] * k}}; }
   Cubic operator+(const Cubic& o) const { Cubic r = *this; r += o; return r; }
   static Cubic constant(double v) { return {{v, 0, 0, 0}}; }
+  // The same polynomial in a variable shifted by d: q(s) = p(s + d).
+  Cubic shifted(double d) const {
+    return {{c[0] + d * (c[1] + d * (c[2] + d * c[3])), c[1] + d * (2.0 * c[2] + 3.0 * d * c[3]),
+             c[2] + 3.0 * d * c[3], c[3]}};
+  }
 };
 
 }  // namespace obscura
