@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 #include <openvdb/openvdb.h>
 
+#include "support/cli_runner.h"
 #include "support/temp_dir_test.h"
 #include "obscura/io/vdb_keyframe.h"
 #include "obscura/medium/gaussian_puff.h"
@@ -20,26 +21,9 @@ namespace fs = std::filesystem;
 namespace obscura {
 namespace {
 
-struct Result {
-  int status;
-  std::string out, err;
-};
-
 class CliTest : public testing::TempDirTest {
  protected:
-  Result run(const std::string& args) {
-    const auto out = dir_ / "stdout.txt", err = dir_ / "stderr.txt";
-    const std::string cmd = std::string(OBSCURA_CLI_PATH) + " " + args + " >" + out.string() +
-                            " 2>" + err.string();
-    const int raw = std::system(cmd.c_str());
-    return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, slurp(out), slurp(err)};
-  }
-  static std::string slurp(const fs::path& p) {
-    std::ifstream f(p);
-    std::stringstream s;
-    s << f.rdbuf();
-    return s.str();
-  }
+  testing::CliResult run(const std::string& args) { return testing::run_cli(args, dir_); }
   fs::path write_scene(const nlohmann::json& doc, const std::string& name = "scene.json") {
     const auto p = dir_ / name;
     std::ofstream(p) << doc.dump(2);
@@ -83,7 +67,7 @@ class CliTest : public testing::TempDirTest {
   // The render must fail, name `file` and `field`, and leave no file in the output folder.
   void expect_render_error(const fs::path& scene, const std::string& file, const std::string& field) {
     const auto out_dir = dir_ / "out";
-    const Result r = run("render " + scene.string() + " -o " + out_dir.string());
+    const testing::CliResult r = run("render " + scene.string() + " -o " + out_dir.string());
     EXPECT_NE(r.status, 0);
     EXPECT_NE(r.err.find("error"), std::string::npos) << r.err;
     EXPECT_NE(r.err.find(file), std::string::npos) << r.err;
@@ -93,7 +77,7 @@ class CliTest : public testing::TempDirTest {
 };
 
 TEST_F(CliTest, VersionAndHelp) {
-  Result r = run("--version");
+  testing::CliResult r = run("--version");
   EXPECT_EQ(r.status, 0);
   EXPECT_NE(r.out.find("obscura 0."), std::string::npos) << r.out;
   for (const char* sub : {"info", "render", "radiance", "make-puff"}) {
@@ -106,7 +90,7 @@ TEST_F(CliTest, VersionAndHelp) {
 }
 
 TEST_F(CliTest, RadianceAndItsInverse) {
-  Result r = run("radiance --temperature 300 --band 8:12 --json");
+  testing::CliResult r = run("radiance --temperature 300 --band 8:12 --json");
   ASSERT_EQ(r.status, 0) << r.err;
   const double l = nlohmann::json::parse(r.out)["band_radiance"].get<double>();
   EXPECT_NEAR(l, 38.5, 0.1);  // DOMAIN.md §5.3
@@ -124,7 +108,7 @@ TEST_F(CliTest, RadianceAndItsInverse) {
 
 TEST_F(CliTest, InfoDescribesAKeyframe) {
   const auto vdb = write_puff("puff.vdb");
-  Result r = run("info " + vdb.string() + " --json");
+  testing::CliResult r = run("info " + vdb.string() + " --json");
   ASSERT_EQ(r.status, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
   EXPECT_EQ(j["dims"], nlohmann::json({16, 16, 16}));
@@ -140,7 +124,7 @@ TEST_F(CliTest, RenderWritesImagesAndSummary) {
   write_puff("puff.vdb");
   const auto scene = write_scene(scene_with_vdb("puff.vdb"));
   const auto out = dir_ / "render";
-  const Result r = run("render " + scene.string() + " -o " + out.string() + " --threads 2 --json");
+  const testing::CliResult r = run("render " + scene.string() + " -o " + out.string() + " --threads 2 --json");
   ASSERT_EQ(r.status, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
   EXPECT_EQ(j["sensors"][0]["bands"].size(), 2u);
@@ -229,7 +213,7 @@ TEST_F(CliTest, OverflowingOrHugeDimsFail) {
 
 TEST_F(CliTest, UnreadableFileFails) {
   expect_render_error(write_scene(scene_with_vdb("missing.vdb")), "missing.vdb", "cannot");
-  const Result r = run("info " + (dir_ / "nope.vdb").string());
+  const testing::CliResult r = run("info " + (dir_ / "nope.vdb").string());
   EXPECT_NE(r.status, 0);
   EXPECT_NE(r.err.find("nope.vdb"), std::string::npos) << r.err;
   expect_render_error(dir_ / "absent.json", "absent.json", "cannot read");

@@ -19,12 +19,14 @@ std::string file_safe_name(const std::string& name) {
 
 std::vector<std::filesystem::path> write_sensor_image(const std::filesystem::path& dir,
                                                       const SensorImage& image,
-                                                      const Provenance& provenance) {
+                                                      const Provenance& provenance,
+                                                      const std::string& suffix, double time_s) {
   std::vector<std::filesystem::path> written;
   const std::string prov = provenance.to_string();
   std::vector<ExrChannel> channels;
   std::map<std::string, std::string> attributes = {{"obscura.provenance", prov},
-                                                   {"obscura.sensor", image.sensor}};
+                                                   {"obscura.sensor", image.sensor},
+                                                   {"obscura.time_s", fmt::format("{:.17g}", time_s)}};
   for (const BandImage& b : image.bands) {
     const std::string n = b.band.name();
     channels.push_back({n + ".radiance", b.radiance});
@@ -36,7 +38,7 @@ std::vector<std::filesystem::path> write_sensor_image(const std::filesystem::pat
     attributes["obscura.band." + n] =
         fmt::format("{}:{} um, {} response points", b.band.lo_um(), b.band.hi_um(), b.band.table().size());
   }
-  const auto exr = dir / (file_safe_name(image.sensor) + ".exr");
+  const auto exr = dir / (file_safe_name(image.sensor) + suffix + ".exr");
   write_exr(exr, image.width, image.height, channels, attributes);
   written.push_back(exr);
 
@@ -44,7 +46,7 @@ std::vector<std::filesystem::path> write_sensor_image(const std::filesystem::pat
   for (const BandImage& b : image.bands) {
     const std::string stem = file_safe_name(image.sensor) + "_" + file_safe_name(b.band.name());
     struct Quantity {
-      const char* suffix;
+      const char* file_part;
       const char* title;
       const char* units;
       const std::vector<float>* values;
@@ -57,12 +59,12 @@ std::vector<std::filesystem::path> write_sensor_image(const std::filesystem::pat
         {"transmittance", "transmittance", "1", &b.transmittance, Colormap::kGray}};
     for (const Quantity& q : quantities) {
       PreviewOptions opt;
-      opt.title = fmt::format("{} · {} ({}–{} µm) · {}", image.sensor, b.band.name(),
-                              b.band.lo_um(), b.band.hi_um(), q.title);
+      opt.title = fmt::format("{} · {} ({}–{} µm) · {} · t = {:.4g} s", image.sensor, b.band.name(),
+                              b.band.lo_um(), b.band.hi_um(), q.title, time_s);
       opt.units = q.units;
       opt.colormap = q.map;
       if (q.map == Colormap::kGray) { opt.min = 0.0; opt.max = 1.0; }
-      const auto path = dir / (stem + "_" + q.suffix + ".png");
+      const auto path = dir / (stem + "_" + q.file_part + suffix + ".png");
       write_png_preview(path, image.width, image.height, *q.values, opt, text);
       written.push_back(path);
     }

@@ -16,9 +16,12 @@ namespace obscura {
 // A band name made safe for file names ("8:12" → "8-12").
 std::string file_safe_name(const std::string& name);
 
-// Returns the paths written, EXR first.
+// Returns the paths written, EXR first. `suffix` is appended to every file
+// name before its extension (frame numbers of a sequence: "_f0003").
 std::vector<std::filesystem::path> write_sensor_image(const std::filesystem::path& dir,
                                                       const SensorImage& image,
-                                                      const Provenance& provenance);
+                                                      const Provenance& provenance,
+                                                      const std::string& suffix = "",
+                                                      double time_s = 0.0);
 
 }  // namespace obscura

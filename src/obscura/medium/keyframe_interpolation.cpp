@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "obscura/core/error.h"
+#include "obscura/core/parallel.h"
 #include "obscura/medium/grid_medium.h"
 
 namespace obscura {
@@ -26,28 +27,33 @@ bool empty_voxel(const VoxelGrid& g, std::size_t v) {
 
 VoxelGrid interpolate_same_layout(const VoxelGrid& a, const VoxelGrid& b, double w) {
   VoxelGrid out(a.dims(), a.placement(), a.wavelengths_um());
-  const std::size_t n = a.dims().count();
   const double u = 1.0 - w;
-  for (int s = 0; s < a.spectral_count(); ++s) {
-    const float *aa = a.sigma_a(s), *ba = b.sigma_a(s), *as = a.sigma_s(s), *bs = b.sigma_s(s);
-    const float *ag = a.g(s), *bg = b.g(s);
-    float *oa = out.sigma_a(s), *os = out.sigma_s(s), *og = out.g(s);
-    for (std::size_t v = 0; v < n; ++v) {
-      oa[v] = static_cast<float>(u * aa[v] + w * ba[v]);
-      const double ws_a = u * as[v], ws_b = w * bs[v];
-      os[v] = static_cast<float>(ws_a + ws_b);
-      const double sum = ws_a + ws_b;
-      og[v] = static_cast<float>(sum > 0 ? (ws_a * ag[v] + ws_b * bg[v]) / sum : u * ag[v] + w * bg[v]);
+  const std::size_t slice = static_cast<std::size_t>(a.dims().nx) * a.dims().ny;
+  // Voxels are independent: z-slices in parallel, the same result for any thread count.
+  parallel_for(static_cast<std::size_t>(a.dims().nz), 0, [&](std::size_t k) {
+    const std::size_t begin = k * slice, end = begin + slice;
+    for (int s = 0; s < a.spectral_count(); ++s) {
+      const float *aa = a.sigma_a(s), *ba = b.sigma_a(s), *as = a.sigma_s(s), *bs = b.sigma_s(s);
+      const float *ag = a.g(s), *bg = b.g(s);
+      float *oa = out.sigma_a(s), *os = out.sigma_s(s), *og = out.g(s);
+      for (std::size_t v = begin; v < end; ++v) {
+        oa[v] = static_cast<float>(u * aa[v] + w * ba[v]);
+        const double ws_a = u * as[v], ws_b = w * bs[v];
+        const double sum = ws_a + ws_b;
+        os[v] = static_cast<float>(sum);
+        og[v] = static_cast<float>(sum > 0 ? (ws_a * ag[v] + ws_b * bg[v]) / sum
+                                           : u * ag[v] + w * bg[v]);
+      }
     }
-  }
-  const float *at = a.temperature(), *bt = b.temperature();
-  float* ot = out.temperature();
-  for (std::size_t v = 0; v < n; ++v) {
-    const bool ea = empty_voxel(a, v), eb = empty_voxel(b, v);
-    if (ea && !eb) ot[v] = bt[v];
-    else if (eb && !ea) ot[v] = at[v];
-    else ot[v] = static_cast<float>(u * at[v] + w * bt[v]);
-  }
+    const float *at = a.temperature(), *bt = b.temperature();
+    float* ot = out.temperature();
+    for (std::size_t v = begin; v < end; ++v) {
+      const bool ea = empty_voxel(a, v), eb = empty_voxel(b, v);
+      if (ea && !eb) ot[v] = bt[v];
+      else if (eb && !ea) ot[v] = at[v];
+      else ot[v] = static_cast<float>(u * at[v] + w * bt[v]);
+    }
+  });
   return out;
 }
 
@@ -57,8 +63,9 @@ VoxelGrid resample_grid(const VoxelGrid& grid, GridDims dims, const GridPlacemen
   VoxelGrid out(dims, placement, grid.wavelengths_um());
   // A non-owning shared_ptr: the medium only reads `grid` during this call.
   const GridMedium medium(std::shared_ptr<const VoxelGrid>(&grid, [](const VoxelGrid*) {}));
-  MediumPoint p;
-  for (int k = 0; k < dims.nz; ++k)
+  parallel_for(static_cast<std::size_t>(dims.nz), 0, [&](std::size_t kz) {
+    const int k = static_cast<int>(kz);
+    MediumPoint p;
     for (int j = 0; j < dims.ny; ++j)
       for (int i = 0; i < dims.nx; ++i) {
         medium.coefficients_at(placement.index_to_world(Vec3(i, j, k)), p);
@@ -70,6 +77,7 @@ VoxelGrid resample_grid(const VoxelGrid& grid, GridDims dims, const GridPlacemen
         }
         out.temperature()[v] = static_cast<float>(p.temperature_k);
       }
+  });
   return out;
 }
 

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "obscura/medium/medium.h"
+#include "obscura/scene/animated_cloud.h"
 #include "obscura/scene/render_settings.h"
 #include "obscura/scene/sensor.h"
 #include "obscura/scene/sky.h"
@@ -14,9 +15,23 @@
 
 namespace obscura {
 
+// A rectangle of a sensor's pixels, [x0, x1) × [y0, y1), whose mean values are
+// reported over time (regions of interest).
+struct PixelRegion {
+  std::string name;
+  std::string sensor;
+  int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+};
+
 struct Scene {
   std::vector<Sensor> sensors;
-  std::shared_ptr<const Medium> medium;  // null when the scene has no cloud
+  // What the renderer sees: every cloud present at `time_s`, as one medium
+  // (null when none is). Set by stage_scene.
+  std::shared_ptr<const Medium> medium;
+  double time_s = 0.0;
+  std::vector<std::shared_ptr<const Medium>> static_clouds;      // present at all times
+  std::vector<std::shared_ptr<AnimatedCloud>> animated_clouds;  // keyframed, with lifecycles
+  std::vector<PixelRegion> regions;
   std::vector<std::unique_ptr<Surface>> surfaces;
   UniformSky sky;
   RenderSettings settings;
@@ -24,7 +39,11 @@ struct Scene {
   nlohmann::json source;                           // the scene as read, for provenance
 };
 
-// Loads and validates a scene file; relative paths inside it are relative to
+// Sets scene.medium to the clouds present at scene time t (s): the static
+// ones and each animated cloud's interpolated state, combined when several.
+void stage_scene(Scene& scene, double t);
+
+// Loads and validates a scene file, staged at time 0; relative paths inside it are relative to
 // the file's folder. Throws InputError naming the file and JSON path.
 Scene load_scene(const std::filesystem::path& path);
 // The same from an already-parsed document (`file` names it in errors).

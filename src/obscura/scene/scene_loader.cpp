@@ -2,11 +2,14 @@
 // checked where it is read, errors name the file and the JSON path, and a key
 // that nothing reads is an error (a typo must not pass silently).
 #include <cmath>
+#include <optional>
 #include <set>
 
 #include <fmt/format.h>
 
+#include "obscura/io/cloud_manifest.h"
 #include "obscura/io/json_reader.h"
+#include "obscura/medium/composite_medium.h"
 #include "obscura/io/vdb_keyframe.h"
 #include "obscura/medium/grid_medium.h"
 #include "obscura/medium/homogeneous_medium.h"
@@ -109,10 +112,28 @@ Sensor parse_sensor(JsonObject o, int index) {
   return s;
 }
 
-std::shared_ptr<const Medium> parse_cloud(JsonObject o, const std::filesystem::path& base,
-                                          std::vector<std::filesystem::path>& inputs) {
+void parse_cloud(JsonObject o, const std::filesystem::path& base, Scene& scene, int index) {
+  std::vector<std::filesystem::path>& inputs = scene.input_files;
   const std::string type = o.string("type");
   std::shared_ptr<const Medium> m;
+  if (type == "animated") {
+    std::filesystem::path file = o.string("manifest");
+    if (file.is_relative()) file = base / file;
+    if (!std::filesystem::is_regular_file(file))
+      throw o.error("manifest", fmt::format("cannot open cloud manifest '{}': no such file", file.string()));
+    inputs.push_back(file);
+    CloudManifest manifest = read_cloud_manifest(file);
+    for (const auto& k : manifest.keyframes) inputs.push_back(k.file);
+    const double activation = o.number_or("activation", 0.0);
+    const std::optional<double> deactivation = o.optional_number("deactivation");
+    const std::string name = o.string_or("name", fmt::format("cloud{}", index));
+    const long long cache = o.integer_or("cache_keyframes", 3);
+    if (cache < 2 || cache > 64) throw o.error("cache_keyframes", "must lie in [2, 64]");
+    o.finish();
+    scene.animated_clouds.push_back(std::make_shared<AnimatedCloud>(
+        name, std::move(manifest), activation, deactivation, static_cast<std::size_t>(cache)));
+    return;
+  }
   if (type == "vdb") {
     std::filesystem::path file = o.string("file");
     if (file.is_relative()) file = base / file;
@@ -136,10 +157,37 @@ std::shared_ptr<const Medium> parse_cloud(JsonObject o, const std::filesystem::p
       throw o.error(e.field(), e.detail());
     }
   } else {
-    throw o.error("type", fmt::format("unknown cloud type '{}' (expected vdb or homogeneous)", type));
+    throw o.error("type",
+                  fmt::format("unknown cloud type '{}' (expected vdb, homogeneous or animated)", type));
   }
   o.finish();
-  return m;
+  scene.static_clouds.push_back(std::move(m));
+}
+
+PixelRegion parse_region(JsonObject o, const Scene& scene) {
+  PixelRegion r;
+  r.name = o.string("name");
+  r.sensor = o.string("sensor");
+  const Sensor* sensor = nullptr;
+  for (const auto& s : scene.sensors)
+    if (s.name == r.sensor) sensor = &s;
+  if (!sensor) throw o.error("sensor", fmt::format("no sensor named '{}'", r.sensor));
+  const auto px = o.numbers("pixels");
+  if (px.size() != 4) throw o.error("pixels", "expected [x0, y0, x1, y1] (pixels, x1 and y1 excluded)");
+  for (double v : px)
+    if (v != std::floor(v)) throw o.error("pixels", "pixel coordinates must be whole numbers");
+  r.x0 = static_cast<int>(px[0]);
+  r.y0 = static_cast<int>(px[1]);
+  r.x1 = static_cast<int>(px[2]);
+  r.y1 = static_cast<int>(px[3]);
+  if (!(0 <= r.x0 && r.x0 < r.x1 && r.x1 <= sensor->camera.width() && 0 <= r.y0 && r.y0 < r.y1 &&
+        r.y1 <= sensor->camera.height()))
+    throw o.error("pixels", fmt::format("[{}, {}, {}, {}] is not a non-empty rectangle inside the "
+                                        "{}x{} image",
+                                        r.x0, r.y0, r.x1, r.y1, sensor->camera.width(),
+                                        sensor->camera.height()));
+  o.finish();
+  return r;
 }
 
 }  // namespace
@@ -163,11 +211,18 @@ Scene parse_scene(const nlohmann::json& doc, const std::filesystem::path& file) 
 
   if (root.has("clouds")) {
     const auto& clouds = root.array("clouds");
-    if (clouds.size() > 1)
-      throw root.error("clouds", "this version renders at most one cloud per scene");
     for (std::size_t i = 0; i < clouds.size(); ++i)
-      scene.medium = parse_cloud(JsonObject(clouds[i], fname, fmt::format("/clouds/{}", i)), base,
-                                 scene.input_files);
+      parse_cloud(JsonObject(clouds[i], fname, fmt::format("/clouds/{}", i)), base, scene,
+                  static_cast<int>(i));
+    // Static clouds must share their wavelengths: check now, naming the scene
+    // (animated clouds are checked when staged, as their keyframes are read then).
+    if (scene.static_clouds.size() > 1) CompositeMedium check(scene.static_clouds, fname);
+  }
+
+  if (root.has("regions")) {
+    const auto& regions = root.array("regions");
+    for (std::size_t i = 0; i < regions.size(); ++i)
+      scene.regions.push_back(parse_region(JsonObject(regions[i], fname, fmt::format("/regions/{}", i)), scene));
   }
 
   if (root.has("surfaces")) {
@@ -207,7 +262,18 @@ Scene parse_scene(const nlohmann::json& doc, const std::filesystem::path& file) 
   }
   root.string_or("description", "");
   root.finish();
+  stage_scene(scene, 0.0);
   return scene;
+}
+
+void stage_scene(Scene& scene, double t) {
+  std::vector<std::shared_ptr<const Medium>> present = scene.static_clouds;
+  for (auto& cloud : scene.animated_clouds)
+    if (auto m = cloud->stage(t)) present.push_back(std::move(m));
+  scene.time_s = t;
+  if (present.empty()) scene.medium = nullptr;
+  else if (present.size() == 1) scene.medium = present.front();
+  else scene.medium = std::make_shared<CompositeMedium>(std::move(present));
 }
 
 Scene load_scene(const std::filesystem::path& path) {
