@@ -6,7 +6,7 @@ PRESET ?= release
 BUILD  := build/$(PRESET)
 JOBS   ?= $(shell nproc)
 
-.PHONY: all deps configure build test demo bench asan clean
+.PHONY: all deps configure build test demo bench asan clean animated-example
 
 all: build
 
@@ -33,3 +33,6 @@ asan:
 
 clean:
 	@rm -rf build out
+
+animated-example: build
+	@OBSCURA=$(BUILD)/apps/obscura/obscura scripts/animated-example
