@@ -25,6 +25,9 @@ class CompositeMedium final : public Medium {
   void coefficients_at(const Vec3& p, MediumPoint& out) const override;
   void trace_segments(const Ray& ray, double t_min, double t_max,
                       const SegmentVisitor& visit) const override;
+  // The sum of the children's bounds over the union of their pieces.
+  void trace_majorants(const Ray& ray, double t_min, double t_max,
+                       const MajorantVisitor& visit) const override;
 
   std::size_t size() const { return children_.size(); }
 

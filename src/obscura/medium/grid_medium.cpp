@@ -166,4 +166,27 @@ void GridMedium::trace_segments(const Ray& ray, double t_min, double t_max,
   }
 }
 
+void GridMedium::trace_majorants(const Ray& ray, double t_min, double t_max,
+                                 const MajorantVisitor& visit) const {
+  const VoxelGrid& g = *grid_;
+  const GridDims& d = g.dims();
+  const int ns = g.spectral_count();
+  // The same cell space as trace_segments: w = index + 1, grid in [½, n + ½].
+  const Vec3 o = g.placement().world_to_index(ray.origin) + Vec3(1, 1, 1);
+  const Vec3 dir = g.placement().world_to_index_direction(ray.direction);
+  const BBox3 domain(Vec3(0.5, 0.5, 0.5), Vec3(d.nx + 0.5, d.ny + 0.5, d.nz + 0.5));
+  if (!domain.intersect(Ray{o, dir}, t_min, t_max)) return;
+  const auto& bd = majorants_.block_dims();
+  LatticeWalker blocks(o, dir, t_min, t_max, majorants_.block_size(), {0, 0, 0},
+                       {bd[0] - 1, bd[1] - 1, bd[2] - 1});
+  std::vector<double> values(ns);
+  std::array<int, 3> b;
+  double t0, t1;
+  while (blocks.next(b, t0, t1)) {
+    if (!(t1 > t0) || majorants_.max_majorant(b[0], b[1], b[2]) <= 0.0f) continue;
+    for (int s = 0; s < ns; ++s) values[s] = majorants_.majorant(b[0], b[1], b[2], s);
+    if (!visit(MajorantSegment{t0, t1, values.data(), ns})) return;
+  }
+}
+
 }  // namespace obscura

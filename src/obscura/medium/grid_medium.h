@@ -26,6 +26,8 @@ class GridMedium final : public Medium {
   void coefficients_at(const Vec3& p, MediumPoint& out) const override;
   void trace_segments(const Ray& ray, double t_min, double t_max,
                       const SegmentVisitor& visit) const override;
+  void trace_majorants(const Ray& ray, double t_min, double t_max,
+                       const MajorantVisitor& visit) const override;
 
   const VoxelGrid& grid() const { return *grid_; }
   const MajorantGrid& majorants() const { return majorants_; }

@@ -44,9 +44,11 @@ HomogeneousMedium::HomogeneousMedium(BBox3 box, std::vector<double> wavelengths_
   values_.g = std::move(g);
   values_.temperature_k = temperature_k;
   cubics_.resize(2 * n);
+  sigma_t_.resize(n);
   for (std::size_t k = 0; k < n; ++k) {
     cubics_[k] = Cubic::constant(values_.sigma_a[k]);
     cubics_[n + k] = Cubic::constant(values_.sigma_s[k]);
+    sigma_t_[k] = values_.sigma_a[k] + values_.sigma_s[k];
   }
 }
 
@@ -77,6 +79,12 @@ void HomogeneousMedium::trace_segments(const Ray& ray, double t_min, double t_ma
   seg.components = &component;
   seg.component_count = 1;
   visit(seg);
+}
+
+void HomogeneousMedium::trace_majorants(const Ray& ray, double t_min, double t_max,
+                                        const MajorantVisitor& visit) const {
+  if (!box_.intersect(ray, t_min, t_max) || !(t_max > t_min)) return;
+  visit(MajorantSegment{t_min, t_max, sigma_t_.data(), static_cast<int>(sigma_t_.size())});
 }
 
 }  // namespace obscura

@@ -21,12 +21,15 @@ class HomogeneousMedium final : public Medium {
   void coefficients_at(const Vec3& p, MediumPoint& out) const override;
   void trace_segments(const Ray& ray, double t_min, double t_max,
                       const SegmentVisitor& visit) const override;
+  void trace_majorants(const Ray& ray, double t_min, double t_max,
+                       const MajorantVisitor& visit) const override;
 
  private:
   BBox3 box_;
   std::vector<double> wavelengths_um_;
   MediumPoint values_;
   std::vector<Cubic> cubics_;  // σa then σs, constant
+  std::vector<double> sigma_t_;  // σa + σs per sample, the exact majorant
 };
 
 }  // namespace obscura

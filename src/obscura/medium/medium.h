@@ -42,10 +42,21 @@ struct MediumSegment {
   bool continuous_with_previous = false;
 };
 
+// A piece [t_begin, t_end] of a ray over which σt ≤ sigma_majorant[k] for every
+// spectral sample k (1/m): the bound that delta and ratio tracking sample
+// against. Outside the pieces a medium reports, σt = 0.
+struct MajorantSegment {
+  double t_begin = 0.0;
+  double t_end = 0.0;
+  const double* sigma_majorant = nullptr;  // spectral_count values, 1/m
+  int spectral_count = 0;
+};
+
 class Medium {
  public:
   // Return false to stop the traversal early.
   using SegmentVisitor = std::function<bool(const MediumSegment&)>;
+  using MajorantVisitor = std::function<bool(const MajorantSegment&)>;
 
   virtual ~Medium() = default;
 
@@ -59,6 +70,10 @@ class Medium {
   // where the medium may be non-zero. `ray.direction` must be unit length.
   virtual void trace_segments(const Ray& ray, double t_min, double t_max,
                               const SegmentVisitor& visit) const = 0;
+  // Visits, in order of increasing t, piecewise-constant upper bounds of σt
+  // along the ray over [t_min, t_max] (coarse: one piece per majorant block).
+  virtual void trace_majorants(const Ray& ray, double t_min, double t_max,
+                               const MajorantVisitor& visit) const = 0;
 
   // Optical depth τ = ∫ σt ds along the ray over [t_min, t_max], one value per
   // spectral sample, integrated exactly from the segments' cubics.

@@ -1,0 +1,42 @@
+#pragma once
+// Distance sampling and transmittance estimation against a medium's
+// majorants, written once for every integrator (pbrt-v4 SampleT_maj; STYLE.md
+// §2): the path tracer, the photon tracer and later GPU kernels all call these.
+//
+// Both walk the piecewise-constant majorant σ̄ of Medium::trace_majorants and
+// draw tentative collisions with rate σ̄ (exponential steps, restarted at each
+// piece boundary: exact, as the exponential is memoryless). At a tentative
+// collision at t the true extinction σt(t) is evaluated:
+//  * delta tracking (Woodcock et al. 1965) accepts it as a real collision with
+//    probability σt/σ̄, so real collisions have density σt(t) e^{−τ(0,t)};
+//  * ratio tracking (Cramer 1978; Novák, Selle & Jarosz 2014) multiplies the
+//    weight by 1 − σt/σ̄ and goes on: an unbiased estimate of e^{−τ}.
+#include <optional>
+
+#include "obscura/core/rng.h"
+#include "obscura/medium/medium.h"
+
+namespace obscura {
+
+// Where a wavelength falls between the medium's spectral samples: values are
+// (1 − frac)·v[sample0] + frac·v[sample1] (linear in wavelength, clamped).
+struct SpectralLerp {
+  int sample0 = 0, sample1 = 0;
+  double frac = 0.0;
+  double operator()(const double* per_sample) const {
+    return (1.0 - frac) * per_sample[sample0] + frac * per_sample[sample1];
+  }
+  static SpectralLerp at(const std::vector<double>& sample_wavelengths_um, double wavelength_um);
+};
+
+// The first real collision along the ray in [0, t_max] (t in metres), or
+// nothing when the ray gets through (probability e^{−τ(0, t_max)}).
+// `scratch` avoids allocations in the inner loop.
+std::optional<double> sample_free_flight(const Medium& medium, const Ray& ray, double t_max,
+                                         const SpectralLerp& lambda, Rng& rng, MediumPoint& scratch);
+
+// Unbiased estimate of the transmittance e^{−τ(0, t_max)} by ratio tracking.
+double estimate_transmittance(const Medium& medium, const Ray& ray, double t_max,
+                              const SpectralLerp& lambda, Rng& rng, MediumPoint& scratch);
+
+}  // namespace obscura
