@@ -108,6 +108,37 @@ TEST(SceneLoader, BadBandAndRangesAreRejected) {
   EXPECT_NE(load_error(doc).find("/sensors"), std::string::npos);
 }
 
+TEST(SceneLoader, RegionsAreCheckedAgainstTheirSensor) {
+  auto doc = minimal_scene();
+  doc["regions"] = {{{"name", "target"}, {"sensor", "ir"}, {"pixels", {2, 3, 10, 9}}}};
+  const Scene s = parse_scene(doc, "scene.json");
+  ASSERT_EQ(s.regions.size(), 1u);
+  EXPECT_EQ(s.regions[0].x1, 10);
+  doc["regions"][0]["sensor"] = "tv";
+  EXPECT_NE(load_error(doc).find("/regions/0/sensor"), std::string::npos);
+  doc["regions"][0]["sensor"] = "ir";
+  doc["regions"][0]["pixels"] = {2, 3, 17, 9};  // beyond the 16-pixel width
+  EXPECT_NE(load_error(doc).find("/regions/0/pixels"), std::string::npos);
+  doc["regions"][0]["pixels"] = {2, 3, 2, 9};  // empty
+  EXPECT_NE(load_error(doc).find("/regions/0/pixels"), std::string::npos);
+}
+
+TEST(SceneLoader, SeveralStaticCloudsMustShareWavelengths) {
+  auto doc = minimal_scene();
+  doc["clouds"].push_back(doc["clouds"][0]);
+  EXPECT_NO_THROW(parse_scene(doc, "scene.json"));
+  doc["clouds"][1]["wavelengths_um"] = {4, 11};
+  EXPECT_NE(load_error(doc).find("clouds/1"), std::string::npos);
+}
+
+TEST(SceneLoader, MissingManifestIsNamed) {
+  auto doc = minimal_scene();
+  doc["clouds"] = {{{"type", "animated"}, {"manifest", "nowhere/cloud.json"}}};
+  const std::string m = load_error(doc);
+  EXPECT_NE(m.find("/clouds/0/manifest"), std::string::npos) << m;
+  EXPECT_NE(m.find("no such file"), std::string::npos) << m;
+}
+
 TEST(SceneLoader, SyntaxErrorNamesLineAndColumn) {
   const auto path = std::filesystem::temp_directory_path() / "obscura_syntax_error.json";
   {
