@@ -120,16 +120,17 @@ Command add_render_command(CLI::App& app, const Invocation& invocation) {
       ->excludes(at);
   cmd->add_flag("--json", o->json, "Print a JSON summary on stdout");
   return {cmd, [o, invocation]() {
+            // Cheap checks of the command line first, before reading any file.
+            if (!std::isfinite(o->at)) throw InputError("", "--at", "must be a finite time in seconds");
+            const bool sequence = !o->time_range.empty();
+            const std::vector<double> times =
+                sequence ? parse_time_range(o->time_range) : std::vector<double>{o->at};
             Scene scene = load_scene(o->scene);
             if (o->threads) scene.settings.threads = *o->threads;
             if (o->seed) scene.settings.seed = *o->seed;
             const Provenance prov =
                 make_provenance(invocation.command_line, scene.settings.seed, scene.input_files);
             const std::filesystem::path dir(o->output);
-
-            const bool sequence = !o->time_range.empty();
-            const std::vector<double> times =
-                sequence ? parse_time_range(o->time_range) : std::vector<double>{o->at};
             nlohmann::json summary = {{"provenance", prov.to_json()},
                                       {"scene", scene.source},
                                       {"threads", resolve_thread_count(scene.settings.threads)},

@@ -30,9 +30,10 @@ class InputError : public Error {
  private:
   static std::string compose(const std::string& file, const std::string& field,
                              const std::string& what) {
-    std::string msg = file.empty() ? std::string("<input>") : file;
-    if (!field.empty()) msg += ": " + field;
-    return msg + ": " + what;
+    // Command-line options have no file: the message starts with the option.
+    std::string msg = file;
+    if (!field.empty()) msg += (msg.empty() ? "" : ": ") + field;
+    return msg.empty() ? what : msg + ": " + what;
   }
   std::string file_;
   std::string field_;
