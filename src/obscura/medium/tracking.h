@@ -31,7 +31,8 @@ struct SpectralLerp {
 
 // The first real collision along the ray in [0, t_max] (t in metres), or
 // nothing when the ray gets through (probability e^{−τ(0, t_max)}).
-// `scratch` avoids allocations in the inner loop.
+// `scratch` avoids allocations in the inner loop; after a collision it holds
+// the medium's coefficients at the collision point.
 std::optional<double> sample_free_flight(const Medium& medium, const Ray& ray, double t_max,
                                          const SpectralLerp& lambda, Rng& rng, MediumPoint& scratch);
 

@@ -1,0 +1,38 @@
+#pragma once
+// An unbiased volumetric path tracer for the full RTE (DESIGN.md §3): the
+// reference solution that faster methods are checked against. This first
+// version handles volume emission σa B(T), scattering with the Henyey–Greenstein
+// phase function, emitting and Lambertian-reflecting surfaces and the uniform
+// sky. Sun next-event estimation, sky next-event estimation and the image-level
+// integration arrive with the rest of issue #3; until then it is a library
+// routine used by tests, not a render method.
+//
+// One path at one spectral node:
+//  * free flights by delta tracking against the medium's majorants;
+//  * at a real collision the emission is scored with the collision estimator,
+//    β (σa/σt) B(T) — its expectation over the free-flight density σt e^{−τ} is
+//    ∫ e^{−τ} σa B ds — and the path continues with weight β·Λ, Λ = σs/σt,
+//    in a direction drawn exactly from the HG phase function;
+//  * a surface adds β ε B(T) and reflects with weight β (1 − ε) into a
+//    cosine-distributed direction;
+//  * an escaping path adds β L_sky;
+//  * after a few bounces Russian roulette on β (survival probability
+//    min(β, 0.99)) ends paths without bias.
+#include "obscura/core/rng.h"
+#include "obscura/medium/tracking.h"
+#include "obscura/render/spectral_nodes.h"
+#include "obscura/scene/scene.h"
+
+namespace obscura {
+
+struct PathTracerSettings {
+  int russian_roulette_depth = 4;  // bounces before roulette starts
+  int max_depth = 100000;          // a safety net; roulette ends paths long before
+};
+
+// One-sample estimate of the spectral radiance (W m⁻² sr⁻¹ µm⁻¹) arriving
+// along -ray.direction at ray.origin, at spectral node `node`.
+double trace_path(const Scene& scene, const Ray& ray, const SpectralNode& node, Rng& rng,
+                  const PathTracerSettings& settings = {});
+
+}  // namespace obscura
