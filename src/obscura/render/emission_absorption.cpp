@@ -42,6 +42,11 @@ struct SegmentIntegrand {
 
   // The source Σ_c σa,c B(T_c) at s, per slot.
   void source(double s, double* out) const {
+    if (components == 1) {  // the common case: one cloud here
+      const double t = temperature[0](s);
+      for (int j = 0; j < count; ++j) out[j] = sa(0, j)(s) * (*planck[j])(t);
+      return;
+    }
     for (int j = 0; j < count; ++j) out[j] = 0.0;
     for (int c = 0; c < components; ++c) {
       const double t = temperature[c](s);
@@ -132,8 +137,10 @@ void integrate_emission_absorption(const Medium* medium, const Ray& ray, double 
       const SpectralNode& nd = node[i];
       Cubic st;
       bool emits = false, scatters = false;
+      const int j_next = integrand.count;  // the slot this node takes if it needs quadrature
       for (int c = 0; c < nc; ++c) {
-        const Cubic sa = at_node(seg.components[c].sigma_a, nd);
+        Cubic& sa = integrand.sa(c, j_next);
+        sa = at_node(seg.components[c].sigma_a, nd);
         const Cubic ss = at_node(seg.components[c].sigma_s, nd);
         st += sa + ss;
         emits = emits || !sa.is_zero();
@@ -150,8 +157,7 @@ void integrate_emission_absorption(const Medium* medium, const Ray& ray, double 
         emitted[i] = nd.planck(seg.components[0].temperature.c[0]) * -std::expm1(-delta_tau[i]);
         continue;
       }
-      const int j = integrand.count++;
-      for (int c = 0; c < nc; ++c) integrand.sa(c, j) = at_node(seg.components[c].sigma_a, nd);
+      const int j = integrand.count++;  // == j_next: its σa cubics are already in place
       integrand.sigma_t[j] = st;
       integrand.planck[j] = &nd.planck;
       active[j] = i;
