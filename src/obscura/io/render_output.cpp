@@ -35,6 +35,10 @@ std::vector<std::filesystem::path> write_sensor_image(const std::filesystem::pat
     attributes["obscura.units." + n + ".radiance"] = "W m-2 sr-1";
     attributes["obscura.units." + n + ".transmittance"] = "1";
     attributes["obscura.units." + n + ".apparent_temperature"] = "K";
+    if (!b.radiance_stderr.empty()) {
+      channels.push_back({n + ".radiance_stderr", b.radiance_stderr});
+      attributes["obscura.units." + n + ".radiance_stderr"] = "W m-2 sr-1";
+    }
     attributes["obscura.band." + n] =
         fmt::format("{}:{} um, {} response points", b.band.lo_um(), b.band.hi_um(), b.band.table().size());
   }

@@ -10,13 +10,15 @@
 #include "obscura/core/rng.h"
 #include "obscura/render/emission_absorption.h"
 #include "obscura/render/spectral_nodes.h"
+#include "obscura/render/volume_path_tracer.h"
 
 namespace obscura {
 
 SensorImage render_sensor(const Scene& scene, const Sensor& sensor, const RenderOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   const RenderSettings& settings = scene.settings;
-  if (settings.method != "emission-absorption")
+  const bool path_tracer = settings.method == "path-tracer";
+  if (!path_tracer && settings.method != "emission-absorption")
     throw Error("render: unknown method '" + settings.method + "'");
   const PinholeCamera& cam = sensor.camera;
   const int width = cam.width(), height = cam.height();
@@ -34,7 +36,8 @@ SensorImage render_sensor(const Scene& scene, const Sensor& sensor, const Render
     if (band_nodes.back().size() > static_cast<std::size_t>(kMaxSpectralNodes))
       throw InputError("", "band " + band.name(), "too many spectral nodes for one band");
     image.bands.push_back({band, std::vector<float>(pixels), std::vector<float>(pixels),
-                           std::vector<float>(pixels)});
+                           std::vector<float>(pixels),
+                           path_tracer ? std::vector<float>(pixels) : std::vector<float>()});
   }
 
   std::atomic<std::uint64_t> segments{0}, evals{0};
@@ -50,7 +53,8 @@ SensorImage render_sensor(const Scene& scene, const Sensor& sensor, const Render
     for (int x = 0; x < width; ++x) {
       const std::size_t pixel = static_cast<std::size_t>(y) * width + x;
       Rng rng(options.seed, pixel);
-      std::vector<double> sum_l(image.bands.size(), 0.0), sum_t(image.bands.size(), 0.0);
+      std::vector<double> sum_l(image.bands.size(), 0.0), sum_t(image.bands.size(), 0.0),
+          sum_l2(image.bands.size(), 0.0);
       for (int s = 0; s < spp; ++s) {
         double px = x + 0.5, py = y + 0.5;
         if (spp > 1) {
@@ -67,23 +71,38 @@ SensorImage render_sensor(const Scene& scene, const Sensor& sensor, const Render
         for (std::size_t b = 0; b < image.bands.size(); ++b) {
           const SpectralNodes& nodes = band_nodes[b];
           const int n = static_cast<int>(nodes.size());
-          for (int i = 0; i < n; ++i) { radiance[i] = 0.0; transmittance[i] = 1.0; }
-          integrate_emission_absorption(scene.medium.get(), ray, t_max, nodes,
-                                        settings.relative_tolerance, radiance.data(),
-                                        transmittance.data(), &stats);
           double band_l = 0, band_t = 0;
-          for (int i = 0; i < n; ++i) {
-            const SpectralNode& nd = nodes.nodes()[i];
-            double background = scene.sky.radiance(nd.wavelength_um);
-            if (hit_surface) {
-              const SurfaceMaterial& m = scene.surfaces[hit.surface]->material();
-              // Opaque grey surface: emits ε B(T) and reflects (1 − ε) of a uniform sky.
-              background = m.emissivity * nd.planck(m.temperature_k) + (1.0 - m.emissivity) * background;
+          if (path_tracer) {
+            // One path per spectral node; the line-of-sight transmittance is exact.
+            const std::vector<double> tau = scene.medium
+                                                ? scene.medium->optical_depth(ray, 0.0, t_max)
+                                                : std::vector<double>(1, 0.0);
+            for (int i = 0; i < n; ++i) {
+              const SpectralNode& nd = nodes.nodes()[i];
+              band_l += nd.weight_um * trace_path(scene, ray, nd, rng);
+              const double tau_i = (1.0 - nd.frac) * tau[nd.sample0] + nd.frac * tau[nd.sample1];
+              band_t += nd.weight_um * std::exp(-tau_i);
             }
-            band_l += nd.weight_um * (radiance[i] + transmittance[i] * background);
-            band_t += nd.weight_um * transmittance[i];
+          } else {
+            for (int i = 0; i < n; ++i) { radiance[i] = 0.0; transmittance[i] = 1.0; }
+            integrate_emission_absorption(scene.medium.get(), ray, t_max, nodes,
+                                          settings.relative_tolerance, radiance.data(),
+                                          transmittance.data(), &stats);
+            for (int i = 0; i < n; ++i) {
+              const SpectralNode& nd = nodes.nodes()[i];
+              double background = scene.sky.radiance(nd.wavelength_um);
+              if (hit_surface) {
+                const SurfaceMaterial& m = scene.surfaces[hit.surface]->material();
+                // Opaque grey surface: emits ε B(T) and reflects (1 − ε) of a uniform sky.
+                background =
+                    m.emissivity * nd.planck(m.temperature_k) + (1.0 - m.emissivity) * background;
+              }
+              band_l += nd.weight_um * (radiance[i] + transmittance[i] * background);
+              band_t += nd.weight_um * transmittance[i];
+            }
           }
           sum_l[b] += band_l;
+          sum_l2[b] += band_l * band_l;
           sum_t[b] += band_t / nodes.quadrature().response_integral();
         }
       }
@@ -93,6 +112,11 @@ SensorImage render_sensor(const Scene& scene, const Sensor& sensor, const Render
         image.bands[b].transmittance[pixel] = static_cast<float>(sum_t[b] / spp);
         image.bands[b].apparent_temperature[pixel] =
             static_cast<float>(band_nodes[b].quadrature().apparent_temperature(l));
+        if (path_tracer) {
+          // Standard error of the mean of spp independent band-radiance samples.
+          const double var = spp > 1 ? std::max(0.0, sum_l2[b] / spp - l * l) * spp / (spp - 1) : 0.0;
+          image.bands[b].radiance_stderr[pixel] = static_cast<float>(std::sqrt(var / spp));
+        }
       }
     }
     segments += stats.segments;

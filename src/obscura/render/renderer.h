@@ -18,6 +18,8 @@ struct BandImage {
   std::vector<float> radiance;              // W m⁻² sr⁻¹
   std::vector<float> transmittance;         // 1
   std::vector<float> apparent_temperature;  // K
+  // Standard error of the radiance (W m⁻² sr⁻¹): Monte Carlo methods only, else empty.
+  std::vector<float> radiance_stderr;
 };
 
 struct RenderStats {

@@ -3,9 +3,8 @@
 // reference solution that faster methods are checked against. This first
 // version handles volume emission σa B(T), scattering with the Henyey–Greenstein
 // phase function, emitting and Lambertian-reflecting surfaces and the uniform
-// sky. Sun next-event estimation, sky next-event estimation and the image-level
-// integration arrive with the rest of issue #3; until then it is a library
-// routine used by tests, not a render method.
+// sky; the renderer uses it for "method": "path-tracer". Sun and sky
+// next-event estimation arrive with the rest of issue #3.
 //
 // One path at one spectral node:
 //  * free flights by delta tracking against the medium's majorants;

@@ -6,8 +6,12 @@
 namespace obscura {
 
 struct RenderSettings {
+  // "emission-absorption" (exact, scattering as extinction only) or
+  // "path-tracer" (unbiased Monte Carlo of the full RTE, with standard errors).
   std::string method = "emission-absorption";
-  int samples_per_pixel = 1;      // 1: the pixel centre; more: stratified jitter
+  // Emission-absorption: 1 = the pixel centre, more = stratified jitter.
+  // Path tracer: paths per pixel (each covering every spectral node).
+  int samples_per_pixel = 1;
   int spectral_nodes_per_band = 8;  // Gauss–Legendre nodes across each band
   double relative_tolerance = 1e-6;  // emission integral per cell
   std::uint64_t seed = 1;

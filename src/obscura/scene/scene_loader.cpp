@@ -241,8 +241,10 @@ Scene parse_scene(const nlohmann::json& doc, const std::filesystem::path& file) 
   if (auto r = root.optional_object("render")) {
     RenderSettings& s = scene.settings;
     s.method = r->string_or("method", s.method);
-    if (s.method != "emission-absorption")
-      throw r->error("method", fmt::format("unknown method '{}' (available: emission-absorption)", s.method));
+    if (s.method != "emission-absorption" && s.method != "path-tracer")
+      throw r->error("method", fmt::format("unknown method '{}' (available: emission-absorption, "
+                                           "path-tracer)",
+                                           s.method));
     const long long spp = r->integer_or("samples_per_pixel", s.samples_per_pixel);
     if (spp < 1 || spp > 65536) throw r->error("samples_per_pixel", "must lie in [1, 65536]");
     s.samples_per_pixel = static_cast<int>(spp);
