@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <fstream>
 
 #include "obscura/core/error.h"
@@ -137,6 +138,21 @@ TEST(SceneLoader, MissingManifestIsNamed) {
   const std::string m = load_error(doc);
   EXPECT_NE(m.find("/clouds/0/manifest"), std::string::npos) << m;
   EXPECT_NE(m.find("no such file"), std::string::npos) << m;
+}
+
+TEST(SceneLoader, SunNeedsThePathTracerAndSaneValues) {
+  auto doc = minimal_scene();
+  doc["sun"] = {{"azimuth_deg", 120}, {"elevation_deg", 35}};
+  EXPECT_NE(load_error(doc).find("/sun"), std::string::npos);  // emission-absorption has no sun
+  doc["render"]["method"] = "path-tracer";
+  const Scene s = parse_scene(doc, "scene.json");
+  EXPECT_TRUE(s.sun.enabled);
+  EXPECT_NEAR(s.sun.direction().z, std::sin(35.0 * M_PI / 180.0), 1e-12);
+  doc["sun"]["elevation_deg"] = -5;
+  EXPECT_NE(load_error(doc).find("/sun/elevation_deg"), std::string::npos);
+  doc["sun"]["elevation_deg"] = 35;
+  doc["sun"]["total_irradiance"] = -1;
+  EXPECT_NE(load_error(doc).find("/sun/total_irradiance"), std::string::npos);
 }
 
 TEST(SceneLoader, SyntaxErrorNamesLineAndColumn) {

@@ -2,9 +2,10 @@
 // An unbiased volumetric path tracer for the full RTE (DESIGN.md §3): the
 // reference solution that faster methods are checked against. This first
 // version handles volume emission σa B(T), scattering with the Henyey–Greenstein
-// phase function, emitting and Lambertian-reflecting surfaces and the uniform
-// sky; the renderer uses it for "method": "path-tracer". Sun and sky
-// next-event estimation arrive with the rest of issue #3.
+// phase function, emitting and Lambertian-reflecting surfaces, the uniform sky
+// and the sun (next-event estimation with ratio-tracked shadow rays); the
+// renderer uses it for "method": "path-tracer". Sky next-event estimation
+// arrives with the rest of issue #3.
 //
 // One path at one spectral node:
 //  * free flights by delta tracking against the medium's majorants;
@@ -14,6 +15,10 @@
 //    in a direction drawn exactly from the HG phase function;
 //  * a surface adds β ε B(T) and reflects with weight β (1 − ε) into a
 //    cosine-distributed direction;
+//  * at every collision and surface hit the sun is sampled directly (a
+//    direction uniform over its disc, transmittance by ratio tracking, zero
+//    behind a surface); escaping paths therefore see only the sky, except
+//    camera rays, which see the sun's disc itself;
 //  * an escaping path adds β L_sky;
 //  * after a few bounces Russian roulette on β (survival probability
 //    min(β, 0.99)) ends paths without bias.

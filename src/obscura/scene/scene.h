@@ -11,6 +11,7 @@
 #include "obscura/scene/render_settings.h"
 #include "obscura/scene/sensor.h"
 #include "obscura/scene/sky.h"
+#include "obscura/scene/sun.h"
 #include "obscura/scene/surface.h"
 
 namespace obscura {
@@ -34,6 +35,7 @@ struct Scene {
   std::vector<PixelRegion> regions;
   std::vector<std::unique_ptr<Surface>> surfaces;
   UniformSky sky;
+  Sun sun;  // used by the path tracer; the emission-absorption method refuses it
   RenderSettings settings;
   std::vector<std::filesystem::path> input_files;  // the scene file and the files it references
   nlohmann::json source;                           // the scene as read, for provenance

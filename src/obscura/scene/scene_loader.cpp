@@ -238,6 +238,24 @@ Scene parse_scene(const nlohmann::json& doc, const std::filesystem::path& file) 
     sky->finish();
   }
 
+  if (auto sun = root.optional_object("sun")) {
+    Sun& s = scene.sun;
+    s.enabled = true;
+    s.azimuth_deg = sun->number("azimuth_deg");
+    s.elevation_deg = sun->number("elevation_deg");
+    if (!(s.elevation_deg > 0 && s.elevation_deg <= 90))
+      throw sun->error("elevation_deg", "must lie in (0, 90] degrees: a sun below the horizon lights nothing");
+    s.angular_diameter_deg = sun->number_or("angular_diameter_deg", s.angular_diameter_deg);
+    if (!(s.angular_diameter_deg > 0 && s.angular_diameter_deg < 10))
+      throw sun->error("angular_diameter_deg", "must lie in (0, 10) degrees");
+    s.temperature_k = sun->number_or("temperature", s.temperature_k);
+    if (!(s.temperature_k > 0)) throw sun->error("temperature", "must be > 0 K");
+    s.total_irradiance_w_m2 = sun->number_or("total_irradiance", s.total_irradiance_w_m2);
+    if (!(s.total_irradiance_w_m2 >= 0))
+      throw sun->error("total_irradiance", "must be >= 0 W m-2 (a negative irradiance is not light)");
+    sun->finish();
+  }
+
   if (auto r = root.optional_object("render")) {
     RenderSettings& s = scene.settings;
     s.method = r->string_or("method", s.method);
@@ -262,6 +280,9 @@ Scene parse_scene(const nlohmann::json& doc, const std::filesystem::path& file) 
     s.threads = static_cast<int>(threads);
     r->finish();
   }
+  if (scene.sun.enabled && scene.settings.method != "path-tracer")
+    throw root.error("sun", "the sun is rendered by the path tracer only: set /render/method to "
+                            "\"path-tracer\" (emission-absorption has no scattering source)");
   root.string_or("description", "");
   root.finish();
   stage_scene(scene, 0.0);
