@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "support/cli_runner.h"
+#include "support/example_manifest.h"
 #include "support/temp_dir_test.h"
 
 namespace fs = std::filesystem;
@@ -21,21 +22,8 @@ class CloudStateTest : public testing::TempDirTest {
  protected:
   void SetUp() override {
     TempDirTest::SetUp();
-    nlohmann::json frames = nlohmann::json::array();
-    for (int k = 0; k <= 10; ++k) {
-      const std::string name = "k" + std::to_string(k) + ".vdb";
-      std::ofstream(dir_ / name);  // placeholder: cloud-state never opens keyframes
-      frames.push_back({{"file", name}, {"time", 1.0 * k}});
-    }
-    manifest_ = {{"keyframes", frames},
-                 {"lifecycle",
-                  {{"init_end", 3}, {"loop_start", 4}, {"loop_end", 7}, {"loop_wrap", 1.0},
-                   {"extinction_start", 8}}},
-                 {"trajectory",
-                  {{"keys",
-                    {{{"time", 0.0}, {"position", {0, 0, 0}}, {"heading_deg", 0}},
-                     {{"time", 10.0}, {"position", {100, 0, 0}}, {"heading_deg", 90}}}},
-                   {"drift_velocity", {0, 0, 1}}}}};
+    manifest_ = testing::write_example_manifest_keyframes(dir_);
+    manifest_["trajectory"]["drift_velocity"] = {0, 0, 1};
   }
   testing::CliResult run(const std::string& args) { return testing::run_cli(args, dir_); }
   std::string write_manifest() {
@@ -106,7 +94,7 @@ TEST_F(CloudStateTest, BadManifestNamesTheField) {
 }
 
 TEST_F(CloudStateTest, MissingKeyframeFileNamesTheField) {
-  fs::remove(dir_ / "k2.vdb");
+  fs::remove(dir_ / testing::example_keyframe_name(2));
   const testing::CliResult r = run("cloud-state " + write_manifest() + " --at 1");
   EXPECT_NE(r.status, 0);
   EXPECT_NE(r.err.find("/keyframes/2/file"), std::string::npos) << r.err;

@@ -7,6 +7,7 @@
 #include <fstream>
 
 #include "obscura/core/error.h"
+#include "support/example_manifest.h"
 #include "support/temp_dir_test.h"
 
 namespace fs = std::filesystem;
@@ -18,29 +19,13 @@ class CloudManifestTest : public testing::TempDirTest {
  protected:
   void SetUp() override {
     TempDirTest::SetUp();
-    // Empty placeholders: the manifest reader checks existence only.
-    for (int k = 0; k <= 10; ++k) std::ofstream(dir_ / file_name(k));
+    example_ = testing::write_example_manifest_keyframes(dir_);
+    example_["trajectory"]["drift_velocity"] = {0, 1, 0};
   }
-  static std::string file_name(int k) {
-    char name[16];
-    std::snprintf(name, sizeof name, "k%03d.vdb", k);
-    return name;
-  }
+  static std::string file_name(int k) { return testing::example_keyframe_name(k); }
   // The example of docs/time-varying-clouds.md: 11 keyframes 1 s apart.
-  static nlohmann::json example() {
-    nlohmann::json frames = nlohmann::json::array();
-    for (int k = 0; k <= 10; ++k) frames.push_back({{"file", file_name(k)}, {"time", 1.0 * k}});
-    return {{"keyframes", frames},
-            {"lifecycle",
-             {{"init_end", 3}, {"loop_start", 4}, {"loop_end", 7}, {"loop_wrap", 1.0},
-              {"extinction_start", 8}}},
-            {"trajectory",
-             {{"keys",
-               {{{"time", 0.0}, {"position", {0, 0, 0}}, {"heading_deg", 0}},
-                {{"time", 10.0}, {"position", {100, 0, 0}}, {"heading_deg", 90}}}},
-              {"interpolation", "linear"},
-              {"drift_velocity", {0, 1, 0}}}}};
-  }
+  nlohmann::json example() const { return example_; }
+  nlohmann::json example_;
   fs::path write(const nlohmann::json& doc, const std::string& name = "cloud.json") {
     const fs::path p = dir_ / name;
     std::ofstream(p) << doc.dump(2);

@@ -260,6 +260,20 @@ inline std::string invalid_failure(long long invalid, const char* what) {
   return "chi-square FAILED outright: " + std::to_string(invalid) + " samples " + what + "\n";
 }
 
+// Pearson's test on the cells, then an outright failure if any sample was
+// invalid (`what` says how).
+inline Chi2Result conclude(const std::vector<double>& observed, const std::vector<double>& expected,
+                           double pdf_integral, const std::function<std::string(int)>& label,
+                           const std::string& rows, long long invalid, const char* what) {
+  Chi2Result r = finish(pearson(observed, expected, label), observed, expected, pdf_integral, label, rows);
+  if (invalid > 0) {
+    r.statistic = std::numeric_limits<double>::infinity();
+    r.p_value = 0.0;
+    r.table = invalid_failure(invalid, what) + r.table;
+  }
+  return r;
+}
+
 }  // namespace chi2_detail
 
 // ---------------------------------------------------------------------------
@@ -327,14 +341,8 @@ inline Chi2Result chi2_sphere(const std::function<Vec3(Rng&)>& sampler,
             chi2_detail::format("observed %.0f, expected %.2f, (O-E)/sqrt(E) %.3g\n", o, e,
                                 e > 0.0 ? (o - e) / std::sqrt(e) : 0.0);
   }
-  const auto pearson = chi2_detail::pearson(observed, expected, label);
-  Chi2Result r = chi2_detail::finish(pearson, observed, expected, integral, label, rows);
-  if (invalid > 0) {
-    r.statistic = std::numeric_limits<double>::infinity();
-    r.p_value = 0.0;
-    r.table = chi2_detail::invalid_failure(invalid, "not finite or not unit length") + r.table;
-  }
-  return r;
+  return chi2_detail::conclude(observed, expected, integral, label, rows, invalid,
+                               "not finite or not unit length");
 }
 
 // Equal-solid-angle bins: `theta_bins` equal cos θ bands × `phi_bins` sectors.
@@ -401,14 +409,7 @@ inline Chi2Result chi2_1d(const std::function<double(Rng&)>& sampler,
                   ": observed %.0f, expected %.2f, (O-E)/sqrt(E) %.3g\n", observed[k], expected[k],
                   expected[k] > 0.0 ? (observed[k] - expected[k]) / std::sqrt(expected[k]) : 0.0);
   }
-  const auto pearson = chi2_detail::pearson(observed, expected, label);
-  Chi2Result r = chi2_detail::finish(pearson, observed, expected, integral, label, rows);
-  if (nan_count > 0) {
-    r.statistic = std::numeric_limits<double>::infinity();
-    r.p_value = 0.0;
-    r.table = chi2_detail::invalid_failure(nan_count, "NaN") + r.table;
-  }
-  return r;
+  return chi2_detail::conclude(observed, expected, integral, label, rows, nan_count, "NaN");
 }
 
 // `bins` equal widths on [lo, hi], plus the outside cell.

@@ -25,6 +25,17 @@ inline AxisLerp axis_lerp(double u, int n) {
   return {std::clamp(ci, 0, n - 1), std::clamp(ci + 1, 0, n - 1), u - c};
 }
 
+// The ray in "cell space" w = index + 1, where reconstruction cell c' spans
+// [c', c'+1] and the grid occupies [½, n + ½]; t stays the world distance in
+// metres. Clips [t_min, t_max] to the grid; false if the ray misses it.
+bool to_cell_space(const VoxelGrid& g, const Ray& ray, double& t_min, double& t_max, Ray& cell_ray) {
+  const GridDims& d = g.dims();
+  cell_ray = Ray{g.placement().world_to_index(ray.origin) + Vec3(1, 1, 1),
+                 g.placement().world_to_index_direction(ray.direction)};
+  const BBox3 domain(Vec3(0.5, 0.5, 0.5), Vec3(d.nx + 0.5, d.ny + 0.5, d.nz + 0.5));
+  return domain.intersect(cell_ray, t_min, t_max);
+}
+
 }  // namespace
 
 void GridMedium::coefficients_at(const Vec3& p, MediumPoint& out) const {
@@ -71,12 +82,10 @@ void GridMedium::trace_segments(const Ray& ray, double t_min, double t_max,
   const GridDims& d = g.dims();
   const int ns = g.spectral_count();
   const std::array<int, 3> n = {d.nx, d.ny, d.nz};
-  // Work in "cell space" w = index + 1, where reconstruction cell c' spans [c', c'+1]
-  // and the grid occupies [½, n + ½]. t stays the world distance in metres.
-  const Vec3 o = g.placement().world_to_index(ray.origin) + Vec3(1, 1, 1);
-  const Vec3 dir = g.placement().world_to_index_direction(ray.direction);
-  const BBox3 domain(Vec3(0.5, 0.5, 0.5), Vec3(n[0] + 0.5, n[1] + 0.5, n[2] + 0.5));
-  if (!domain.intersect(Ray{o, dir}, t_min, t_max)) return;
+  Ray cell_ray;
+  if (!to_cell_space(g, ray, t_min, t_max, cell_ray)) return;
+  const Vec3& o = cell_ray.origin;
+  const Vec3& dir = cell_ray.direction;
 
   std::vector<Cubic> cubics(2 * static_cast<std::size_t>(ns));
   Cubic* sig_a = cubics.data();
@@ -169,13 +178,11 @@ void GridMedium::trace_segments(const Ray& ray, double t_min, double t_max,
 void GridMedium::trace_majorants(const Ray& ray, double t_min, double t_max,
                                  const MajorantVisitor& visit) const {
   const VoxelGrid& g = *grid_;
-  const GridDims& d = g.dims();
   const int ns = g.spectral_count();
-  // The same cell space as trace_segments: w = index + 1, grid in [½, n + ½].
-  const Vec3 o = g.placement().world_to_index(ray.origin) + Vec3(1, 1, 1);
-  const Vec3 dir = g.placement().world_to_index_direction(ray.direction);
-  const BBox3 domain(Vec3(0.5, 0.5, 0.5), Vec3(d.nx + 0.5, d.ny + 0.5, d.nz + 0.5));
-  if (!domain.intersect(Ray{o, dir}, t_min, t_max)) return;
+  Ray cell_ray;  // the same cell space as trace_segments
+  if (!to_cell_space(g, ray, t_min, t_max, cell_ray)) return;
+  const Vec3& o = cell_ray.origin;
+  const Vec3& dir = cell_ray.direction;
   const auto& bd = majorants_.block_dims();
   LatticeWalker blocks(o, dir, t_min, t_max, majorants_.block_size(), {0, 0, 0},
                        {bd[0] - 1, bd[1] - 1, bd[2] - 1});

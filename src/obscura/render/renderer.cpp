@@ -68,20 +68,21 @@ SensorImage render_sensor(const Scene& scene, const Sensor& sensor, const Render
         const bool hit_surface = intersect_surfaces(scene.surfaces, ray, 0.0,
                                                     std::numeric_limits<double>::infinity(), hit);
         const double t_max = hit_surface ? hit.t : std::numeric_limits<double>::infinity();
+        // The path tracer reports the exact line-of-sight transmittance: τ per
+        // medium sample, once per ray for all bands.
+        const std::vector<double> line_of_sight_tau =
+            path_tracer && scene.medium ? scene.medium->optical_depth(ray, 0.0, t_max)
+                                        : std::vector<double>(path_tracer ? medium_wl.size() : 0, 0.0);
         for (std::size_t b = 0; b < image.bands.size(); ++b) {
           const SpectralNodes& nodes = band_nodes[b];
           const int n = static_cast<int>(nodes.size());
           double band_l = 0, band_t = 0;
           if (path_tracer) {
-            // One path per spectral node; the line-of-sight transmittance is exact.
-            const std::vector<double> tau = scene.medium
-                                                ? scene.medium->optical_depth(ray, 0.0, t_max)
-                                                : std::vector<double>(1, 0.0);
+            // One path per spectral node.
             for (int i = 0; i < n; ++i) {
               const SpectralNode& nd = nodes.nodes()[i];
               band_l += nd.weight_um * trace_path(scene, ray, nd, rng);
-              const double tau_i = (1.0 - nd.frac) * tau[nd.sample0] + nd.frac * tau[nd.sample1];
-              band_t += nd.weight_um * std::exp(-tau_i);
+              band_t += nd.weight_um * std::exp(-nd.lerp()(line_of_sight_tau.data()));
             }
           } else {
             for (int i = 0; i < n; ++i) { radiance[i] = 0.0; transmittance[i] = 1.0; }

@@ -8,6 +8,7 @@
 
 #include "obscura/core/band.h"
 #include "obscura/core/planck.h"
+#include "obscura/medium/tracking.h"
 
 namespace obscura {
 
@@ -17,6 +18,7 @@ struct SpectralNode {
   PlanckAtWavelength planck;
   int sample0 = 0, sample1 = 0;  // bracketing medium samples
   double frac = 0;               // weight of sample1
+  SpectralLerp lerp() const { return {sample0, sample1, frac}; }
 };
 
 class SpectralNodes {

@@ -35,8 +35,7 @@ Vec3 sample_sun_direction(const Sun& sun, Rng& rng) {
 double trace_path(const Scene& scene, const Ray& camera_ray, const SpectralNode& node, Rng& rng,
                   const PathTracerSettings& settings) {
   const Medium* medium = scene.medium.get();
-  const SpectralLerp lambda =
-      medium ? SpectralLerp{node.sample0, node.sample1, node.frac} : SpectralLerp{};
+  const SpectralLerp lambda = node.lerp();
   MediumPoint point;
   Ray ray = camera_ray;
   double radiance = 0.0, beta = 1.0;
