@@ -23,7 +23,7 @@ Scene test_scene(int spp) {
   scene.surfaces.push_back(std::make_unique<GroundPlane>("ground", SurfaceMaterial{290, 0.95}, 0.0));
   scene.surfaces.push_back(
       std::make_unique<BoxSurface>("box", SurfaceMaterial{330, 0.9}, BBox3({-1, 3, 0}, {1, 5, 2})));
-  scene.sky.temperature_k = 240;
+  scene.sky = Sky::blackbody(240, true);
   scene.settings.samples_per_pixel = spp;
   return scene;
 }
@@ -65,7 +65,7 @@ TEST(Renderer, BlackbodySurfacesAreSeenAtTheirTemperature) {
   sensor.bands = {Band::preset("lwir")};
   scene.sensors.push_back(sensor);
   scene.surfaces.push_back(std::make_unique<GroundPlane>("ground", SurfaceMaterial{301.5, 1.0}, 0.0));
-  scene.sky.temperature_k = 230;
+  scene.sky = Sky::blackbody(230, true);
   const SensorImage img = render_sensor(scene, sensor, {});
   const auto& b = img.bands[0];
   for (int y = 0; y < 8; ++y)
@@ -91,7 +91,7 @@ TEST(Renderer, GreySurfaceInEquilibriumWithSkyLooksBlack) {
                                                      std::vector<double>{0.2},
                                                      std::vector<double>{0.0},
                                                      std::vector<double>{0.0}, 300.0);
-  scene.sky.temperature_k = 300.0;
+  scene.sky = Sky::blackbody(300.0, true);
   const SensorImage img = render_sensor(scene, sensor, {});
   for (float t : img.bands[0].apparent_temperature) EXPECT_NEAR(t, 300.0, 1e-3);
 }
@@ -152,7 +152,7 @@ TEST(Renderer, PathTracerFurnaceImage) {
   p.origin_m = {-1.5, -1.5, -1.5};
   grid->set_placement(p);
   scene.medium = std::make_shared<GridMedium>(grid);
-  scene.sky.temperature_k = 300.0;
+  scene.sky = Sky::blackbody(300.0, true);
   scene.settings.method = "path-tracer";
   scene.settings.samples_per_pixel = 200;
   scene.settings.spectral_nodes_per_band = 2;

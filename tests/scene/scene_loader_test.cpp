@@ -45,7 +45,7 @@ TEST(SceneLoader, LoadsAValidScene) {
   ASSERT_TRUE(s.medium);
   EXPECT_EQ(s.medium->wavelengths_um().size(), 2u);
   EXPECT_EQ(s.surfaces.size(), 2u);
-  EXPECT_EQ(s.sky.temperature_k, 250);
+  EXPECT_EQ(s.sky.temperature_k(), 250);
   EXPECT_EQ(s.settings.samples_per_pixel, 2);
   EXPECT_EQ(s.settings.seed, 7u);
 }
@@ -153,6 +153,51 @@ TEST(SceneLoader, SunNeedsThePathTracerAndSaneValues) {
   doc["sun"]["elevation_deg"] = 35;
   doc["sun"]["total_irradiance"] = -1;
   EXPECT_NE(load_error(doc).find("/sun/total_irradiance"), std::string::npos);
+}
+
+TEST(SceneLoader, SunSpectrumFromATable) {
+  auto doc = minimal_scene();
+  doc["render"]["method"] = "path-tracer";
+  doc["sun"] = {{"azimuth_deg", 120}, {"elevation_deg", 35},
+                {"irradiance_table", {{"wavelengths_um", {0.4, 0.6, 1.0}},
+                                      {"irradiance_w_m2_um", {1500, 1800, 700}}}}};
+  const Scene s = parse_scene(doc, "scene.json");
+  EXPECT_NEAR(s.sun.irradiance(0.5), 1650.0, 1e-9);  // linear between rows
+  EXPECT_NEAR(s.sun.irradiance(1.0), 700.0, 1e-9);
+  EXPECT_EQ(s.sun.irradiance(1.2), 0.0);               // zero outside the table
+  doc["sun"]["irradiance_table"]["irradiance_w_m2_um"][1] = -3;
+  EXPECT_NE(load_error(doc).find("/sun/irradiance_table/irradiance_w_m2_um/1"), std::string::npos);
+  doc["sun"]["irradiance_table"]["irradiance_w_m2_um"] = {1, 2};
+  EXPECT_NE(load_error(doc).find("/sun/irradiance_table/irradiance_w_m2_um"), std::string::npos);
+  doc["sun"]["irradiance_table"]["irradiance_w_m2_um"] = {1, 2, 3};
+  doc["sun"]["irradiance_table"]["wavelengths_um"] = {0.4, 0.3, 1.0};
+  EXPECT_NE(load_error(doc).find("/sun/irradiance_table/wavelengths_um/1"), std::string::npos);
+  doc["sun"]["irradiance_table"]["wavelengths_um"] = {0.4, 0.6, 1.0};
+  doc["sun"]["temperature"] = 5000;
+  EXPECT_NE(load_error(doc).find("not both"), std::string::npos);
+}
+
+TEST(SceneLoader, SkyByTemperatureOrByZenithTable) {
+  auto doc = minimal_scene();
+  doc["sky"] = {{"temperature", 250}, {"below_horizon", false}};
+  Scene s = parse_scene(doc, "scene.json");
+  EXPECT_EQ(s.sky.radiance({0, 0, -1}, 10.0), 0.0);
+  EXPECT_GT(s.sky.radiance({0, 0, 1}, 10.0), 0.0);
+  doc["sky"] = nlohmann::json::parse(R"({"zenith_deg": [0, 60, 90], "wavelengths_um": [8, 12],
+                                         "radiance": [[1, 2], [3, 4], [5, 6]]})");
+  s = parse_scene(doc, "scene.json");
+  EXPECT_NEAR(s.sky.radiance({0, 0, 1}, 10.0), 1.5, 1e-12);
+  doc["sky"]["radiance"][2] = {5};
+  EXPECT_NE(load_error(doc).find("/sky/radiance/2"), std::string::npos) << load_error(doc);
+  doc["sky"]["radiance"][2] = {5, "x"};
+  EXPECT_NE(load_error(doc).find("/sky/radiance/2/1"), std::string::npos) << load_error(doc);
+  doc["sky"]["radiance"][2] = {5, 6};
+  doc["sky"]["zenith_deg"] = {0, 60, 80};
+  EXPECT_NE(load_error(doc).find("/sky/zenith_deg/2"), std::string::npos) << load_error(doc);
+  doc["sky"]["temperature"] = 200;
+  EXPECT_NE(load_error(doc).find("not both"), std::string::npos);
+  doc["sky"] = nlohmann::json::object();
+  EXPECT_NE(load_error(doc).find("/sky/temperature"), std::string::npos);
 }
 
 TEST(SceneLoader, SyntaxErrorNamesLineAndColumn) {

@@ -91,12 +91,15 @@ SensorImage render_sensor(const Scene& scene, const Sensor& sensor, const Render
                                           transmittance.data(), &stats);
             for (int i = 0; i < n; ++i) {
               const SpectralNode& nd = nodes.nodes()[i];
-              double background = scene.sky.radiance(nd.wavelength_um);
+              double background = scene.sky.radiance(ray.direction, nd.wavelength_um);
               if (hit_surface) {
                 const SurfaceMaterial& m = scene.surfaces[hit.surface]->material();
-                // Opaque grey surface: emits ε B(T) and reflects (1 − ε) of a uniform sky.
-                background =
-                    m.emissivity * nd.planck(m.temperature_k) + (1.0 - m.emissivity) * background;
+                // Opaque grey Lambertian surface: emits ε B(T) and reflects
+                // (1 − ε) of the sky it faces (clouds' light on surfaces is the
+                // path tracer's job).
+                background = m.emissivity * nd.planck(m.temperature_k) +
+                             (1.0 - m.emissivity) *
+                                 scene.sky.cosine_weighted_mean(hit.normal, nd.wavelength_um);
               }
               band_l += nd.weight_um * (radiance[i] + transmittance[i] * background);
               band_t += nd.weight_um * transmittance[i];

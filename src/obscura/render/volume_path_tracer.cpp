@@ -10,10 +10,10 @@
 namespace obscura {
 namespace {
 
-// Transmittance from `origin` towards the sun along `direction`: zero when a
-// surface is in the way, else ratio tracking through the medium.
-double transmittance_to_sun(const Scene& scene, const Vec3& origin, const Vec3& direction,
-                            const SpectralLerp& lambda, Rng& rng, MediumPoint& scratch) {
+// Transmittance from `origin` along `direction` to infinity (the sun or the
+// sky): zero when a surface is in the way, else ratio tracking through the medium.
+double transmittance_to_infinity(const Scene& scene, const Vec3& origin, const Vec3& direction,
+                                 const SpectralLerp& lambda, Rng& rng, MediumPoint& scratch) {
   const Ray ray{origin, direction};
   SurfaceHit hit;
   if (intersect_surfaces(scene.surfaces, ray, 1e-9, std::numeric_limits<double>::infinity(), hit))
@@ -30,6 +30,31 @@ Vec3 sample_sun_direction(const Sun& sun, Rng& rng) {
                         sample_uniform_cone(rng.uniform(), rng.uniform(), sun.cos_half_angle()));
 }
 
+// Power heuristic (Veach 1997, eq. 9.13, β = 2) for a sample of density `a`
+// combined with one of density `b`.
+double power_heuristic(double a, double b) {
+  const double a2 = a * a, b2 = b * b;
+  return a2 + b2 > 0.0 ? a2 / (a2 + b2) : 0.0;
+}
+
+// Next-event estimation of the sky at a vertex: one sky direction from the
+// sky's density, weighted against the vertex's own direction sampling
+// (`scatter_pdf`, also its throughput factor f: HG is sampled exactly and the
+// Lambertian lobe by its cosine, so f = pdf for both). Returns f L T w / p_sky.
+template <typename ScatterPdf>
+double sky_next_event(const Scene& scene, const Vec3& position, const SpectralNode& node,
+                      const SpectralLerp& lambda, Rng& rng, MediumPoint& scratch,
+                      ScatterPdf&& scatter_pdf) {
+  double sky_pdf = 0.0;
+  const Vec3 d = scene.sky.sample(rng.uniform(), rng.uniform(), &sky_pdf);
+  const double f = scatter_pdf(d);
+  if (!(sky_pdf > 0.0) || !(f > 0.0)) return 0.0;
+  const double l = scene.sky.radiance(d, node.wavelength_um);
+  if (l == 0.0) return 0.0;
+  return f * l / sky_pdf * power_heuristic(sky_pdf, f) *
+         transmittance_to_infinity(scene, position, d, lambda, rng, scratch);
+}
+
 }  // namespace
 
 double trace_path(const Scene& scene, const Ray& camera_ray, const SpectralNode& node, Rng& rng,
@@ -39,6 +64,11 @@ double trace_path(const Scene& scene, const Ray& camera_ray, const SpectralNode&
   MediumPoint point;
   Ray ray = camera_ray;
   double radiance = 0.0, beta = 1.0;
+  using SkySampling = PathTracerSettings::SkySampling;
+  const bool sky_lit = !scene.sky.is_black() &&
+                       (settings.sky_next_event == SkySampling::kAlways ||
+                        (settings.sky_next_event == SkySampling::kAuto && scene.sky.is_table()));
+  double last_scatter_pdf = 0.0;  // density of the direction the path now follows
   for (int depth = 0; depth < settings.max_depth; ++depth) {
     SurfaceHit hit;
     const bool on_surface = intersect_surfaces(scene.surfaces, ray, 1e-9,
@@ -62,9 +92,14 @@ double trace_path(const Scene& scene, const Ray& camera_ray, const SpectralNode&
         const double p = phase.eval(ray.direction, to_sun);
         if (p > 0.0)
           radiance += beta * p * scene.sun.irradiance(node.wavelength_um) *
-                      transmittance_to_sun(scene, position, to_sun, lambda, rng, point);
+                      transmittance_to_infinity(scene, position, to_sun, lambda, rng, point);
       }
-      ray = Ray{position, phase.sample(ray.direction, rng.uniform(), rng.uniform(), nullptr)};
+      if (sky_lit)
+        radiance += beta * sky_next_event(scene, position, node, lambda, rng, point,
+                                          [&](const Vec3& d) { return phase.eval(ray.direction, d); });
+      double pdf = 0.0;
+      ray = Ray{position, phase.sample(ray.direction, rng.uniform(), rng.uniform(), &pdf)};
+      last_scatter_pdf = pdf;
     } else if (on_surface) {
       const SurfaceMaterial& m = scene.surfaces[hit.surface]->material();
       radiance += beta * m.emissivity * node.planck(m.temperature_k);
@@ -77,15 +112,25 @@ double trace_path(const Scene& scene, const Ray& camera_ray, const SpectralNode&
         const double cos_sun = dot(hit.normal, to_sun);
         if (cos_sun > 0.0)
           radiance += beta / std::numbers::pi * cos_sun * scene.sun.irradiance(node.wavelength_um) *
-                      transmittance_to_sun(scene, position, to_sun, lambda, rng, point);
+                      transmittance_to_infinity(scene, position, to_sun, lambda, rng, point);
       }
+      if (sky_lit)
+        radiance += beta * sky_next_event(scene, position, node, lambda, rng, point, [&](const Vec3& d) {
+                      return std::max(0.0, dot(hit.normal, d)) * std::numbers::inv_pi;
+                    });
       ray = Ray{position, local_to_world(hit.normal,
                                          sample_cosine_hemisphere(rng.uniform(), rng.uniform()))};
+      last_scatter_pdf = std::max(0.0, dot(hit.normal, ray.direction)) * std::numbers::inv_pi;
     } else {
-      radiance += beta * scene.sky.radiance(node.wavelength_um);
+      // After a bounce the sky was also sampled by next-event estimation: the
+      // two estimators are combined with the power heuristic.
+      const double sky = scene.sky.radiance(ray.direction, node.wavelength_um);
+      radiance += beta * sky *
+                  (depth == 0 || !sky_lit ? 1.0
+                                          : power_heuristic(last_scatter_pdf, scene.sky.pdf(ray.direction)));
       // The sun's disc is seen directly only by camera rays: after a bounce,
       // next-event estimation already counts it.
-      if (depth == 0 && scene.sun.enabled &&
+      if (depth == 0 && settings.camera_sees_sun && scene.sun.enabled &&
           dot(ray.direction, scene.sun.direction()) >= scene.sun.cos_half_angle())
         radiance += beta * scene.sun.radiance(node.wavelength_um);
       break;

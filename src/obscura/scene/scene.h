@@ -34,7 +34,7 @@ struct Scene {
   std::vector<std::shared_ptr<AnimatedCloud>> animated_clouds;  // keyframed, with lifecycles
   std::vector<PixelRegion> regions;
   std::vector<std::unique_ptr<Surface>> surfaces;
-  UniformSky sky;
+  Sky sky;
   Sun sun;  // used by the path tracer; the emission-absorption method refuses it
   RenderSettings settings;
   std::vector<std::filesystem::path> input_files;  // the scene file and the files it references

@@ -190,6 +190,46 @@ PixelRegion parse_region(JsonObject o, const Scene& scene) {
   return r;
 }
 
+// "sky": {"temperature": K, "below_horizon": true} or a zenith table
+// {"zenith_deg": [...], "wavelengths_um": [...], "radiance": [[...], ...]}.
+Sky parse_sky(JsonObject& sky) {
+  if (sky.has("temperature")) {
+    if (sky.has("zenith_deg") || sky.has("radiance"))
+      throw sky.error("temperature", "give either a temperature or a zenith table, not both");
+    const double t = sky.number("temperature");
+    if (!(t >= 0)) throw sky.error("temperature", "must be >= 0 K");
+    const bool below = sky.boolean_or("below_horizon", true);
+    sky.finish();
+    return Sky::blackbody(t, below);
+  }
+  if (!sky.has("zenith_deg"))
+    throw sky.error("temperature", "give a brightness temperature (K) or a table: zenith_deg, "
+                                   "wavelengths_um and radiance (W m-2 sr-1 um-1)");
+  std::vector<double> zenith = sky.numbers("zenith_deg");
+  std::vector<double> wavelengths = sky.numbers("wavelengths_um");
+  const auto& rows = sky.array("radiance");
+  std::vector<std::vector<double>> radiance;
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    if (!rows[i].is_array())
+      throw InputError(sky.file(), fmt::format("{}/{}", sky.path_of("radiance"), i),
+                       "must be an array of radiances, one per wavelength");
+    std::vector<double> row;
+    for (std::size_t j = 0; j < rows[i].size(); ++j) {
+      if (!rows[i][j].is_number())
+        throw InputError(sky.file(), fmt::format("{}/{}/{}", sky.path_of("radiance"), i, j),
+                         "must be a number (W m-2 sr-1 um-1)");
+      row.push_back(rows[i][j].get<double>());
+    }
+    radiance.push_back(std::move(row));
+  }
+  sky.finish();
+  try {
+    return Sky::zenith_table(std::move(zenith), std::move(wavelengths), std::move(radiance), "");
+  } catch (const InputError& e) {
+    throw InputError(sky.file(), sky.path() + "/" + e.field(), e.detail());
+  }
+}
+
 }  // namespace
 
 Scene parse_scene(const nlohmann::json& doc, const std::filesystem::path& file) {
@@ -232,11 +272,7 @@ Scene parse_scene(const nlohmann::json& doc, const std::filesystem::path& file) 
           parse_surface(JsonObject(surfaces[i], fname, fmt::format("/surfaces/{}", i)), static_cast<int>(i)));
   }
 
-  if (auto sky = root.optional_object("sky")) {
-    scene.sky.temperature_k = sky->number("temperature");
-    if (!(scene.sky.temperature_k >= 0)) throw sky->error("temperature", "must be >= 0 K");
-    sky->finish();
-  }
+  if (auto sky = root.optional_object("sky")) scene.sky = parse_sky(*sky);
 
   if (auto sun = root.optional_object("sun")) {
     Sun& s = scene.sun;
@@ -253,6 +289,27 @@ Scene parse_scene(const nlohmann::json& doc, const std::filesystem::path& file) 
     s.total_irradiance_w_m2 = sun->number_or("total_irradiance", s.total_irradiance_w_m2);
     if (!(s.total_irradiance_w_m2 >= 0))
       throw sun->error("total_irradiance", "must be >= 0 W m-2 (a negative irradiance is not light)");
+    if (auto table = sun->optional_object("irradiance_table")) {
+      if (sun->has("temperature") || sun->has("total_irradiance"))
+        throw sun->error("irradiance_table",
+                         "give either irradiance_table or temperature/total_irradiance, not both");
+      s.table_wavelengths_um = table->numbers("wavelengths_um");
+      s.table_irradiance_w_m2_um = table->numbers("irradiance_w_m2_um");
+      if (s.table_wavelengths_um.size() < 2)
+        throw table->error("wavelengths_um", "needs at least two wavelengths");
+      if (s.table_irradiance_w_m2_um.size() != s.table_wavelengths_um.size())
+        throw table->error("irradiance_w_m2_um",
+                           fmt::format("needs one value per wavelength ({}, got {})",
+                                       s.table_wavelengths_um.size(), s.table_irradiance_w_m2_um.size()));
+      for (std::size_t i = 0; i < s.table_wavelengths_um.size(); ++i) {
+        if (!(s.table_wavelengths_um[i] > (i ? s.table_wavelengths_um[i - 1] : 0.0)))
+          throw table->error(fmt::format("wavelengths_um/{}", i), "must be > 0 µm and strictly increasing");
+        if (!(s.table_irradiance_w_m2_um[i] >= 0))
+          throw table->error(fmt::format("irradiance_w_m2_um/{}", i),
+                             "must be >= 0 W m-2 um-1 (a negative irradiance is not light)");
+      }
+      table->finish();
+    }
     sun->finish();
   }
 

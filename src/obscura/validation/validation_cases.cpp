@@ -1,11 +1,16 @@
 #include "obscura/validation/validation_cases.h"
 
 #include <cmath>
+#include <fstream>
+#include <limits>
 #include <numbers>
 
+#include <boost/math/special_functions/expint.hpp>
 #include <fmt/format.h>
 
 #include "obscura/core/error.h"
+#include "obscura/core/parallel.h"
+#include "obscura/core/sampling.h"
 #include "obscura/core/planck.h"
 #include "obscura/medium/gaussian_puff.h"
 #include "obscura/medium/grid_medium.h"
@@ -22,30 +27,46 @@ struct MeanEstimate {
 };
 
 // Mean and standard error of draws of `sample`, draw i with its own pcg32
-// stream. With o.samples > 0 exactly that many draws; with 0, batches until the
-// standard error is below `target_stderr` (at most kMaxAutoSamples draws).
+// stream, so the result does not depend on the thread count. With o.samples > 0
+// exactly that many draws; with 0, batches until the standard error is below
+// max(target_stderr, relative_target·|mean|) (at most kMaxAutoSamples draws).
 constexpr int kAutoBatch = 50000;
 constexpr long long kMaxAutoSamples = 50000000;
+constexpr long long kChunk = 1000;  // draws summed per parallel work item
 
 template <typename Sample>
 MeanEstimate estimate(const ValidationOptions& o, double target_stderr, std::uint64_t stream_base,
-                      Sample&& sample) {
+                      Sample&& sample, double relative_target = 0.0) {
   double sum = 0, sum2 = 0;
   long long n = 0;
   MeanEstimate e;
   while (true) {
     const long long batch = o.samples > 0 ? o.samples : kAutoBatch;
-    for (long long i = 0; i < batch; ++i, ++n) {
-      Rng rng(o.seed, stream_base + static_cast<std::uint64_t>(n));
-      const double x = sample(rng);
-      sum += x;
-      sum2 += x * x;
+    const std::size_t chunks = static_cast<std::size_t>((batch + kChunk - 1) / kChunk);
+    std::vector<double> chunk_sum(chunks, 0.0), chunk_sum2(chunks, 0.0);
+    parallel_for(chunks, o.threads, [&](std::size_t c) {
+      const long long begin = static_cast<long long>(c) * kChunk;
+      const long long end = std::min(batch, begin + kChunk);
+      for (long long i = begin; i < end; ++i) {
+        Rng rng(o.seed, stream_base + static_cast<std::uint64_t>(n + i));
+        const double x = sample(rng);
+        chunk_sum[c] += x;
+        chunk_sum2[c] += x * x;
+      }
+    });
+    // Summed in chunk order: the same total whatever the scheduling.
+    for (std::size_t c = 0; c < chunks; ++c) {
+      sum += chunk_sum[c];
+      sum2 += chunk_sum2[c];
     }
+    n += batch;
     e.mean = sum / n;
     const double var = n > 1 ? std::max(0.0, sum2 / n - e.mean * e.mean) * n / (n - 1) : 0.0;
     e.stderr_mean = std::sqrt(var / n);
     e.samples = n;
-    if (o.samples > 0 || e.stderr_mean <= target_stderr || n >= kMaxAutoSamples) return e;
+    if (o.samples > 0 || n >= kMaxAutoSamples ||
+        e.stderr_mean <= std::max(target_stderr, relative_target * std::abs(e.mean)))
+      return e;
   }
 }
 
@@ -95,7 +116,7 @@ std::vector<ValidationRow> validate_furnace(double tau, double g, const Validati
   check("--tau", tau, 0.0, 1e3, "optical thickness must lie in [0, 1000]");
   check("--g", g, -0.999, 0.999, "g must lie in [-0.999, 0.999]");
   Scene scene;
-  scene.sky.temperature_k = 300.0;
+  scene.sky = Sky::blackbody(300.0, true);
   scene.medium = std::make_shared<HomogeneousMedium>(BBox3({0, 0, 0}, {1, 1, 1}), std::vector<double>{10.0},
                                                      std::vector<double>{0.0}, std::vector<double>{tau},
                                                      std::vector<double>{g}, 0.0);
@@ -116,7 +137,7 @@ std::vector<ValidationRow> validate_equilibrium(double albedo, double tau, doubl
   check("--g", g, -0.999, 0.999, "g must lie in [-0.999, 0.999]");
   check("--temperature", temperature_k, 1.0, 1e4, "temperature must lie in [1, 10000] K");
   Scene scene;
-  scene.sky.temperature_k = temperature_k;
+  scene.sky = Sky::blackbody(temperature_k, true);
   scene.surfaces.push_back(
       std::make_unique<GroundPlane>("ground", SurfaceMaterial{temperature_k, 0.5}, -1.0));
   scene.medium = std::make_shared<HomogeneousMedium>(
@@ -201,16 +222,163 @@ std::vector<ValidationRow> validate_puff_transmittance(const ValidationOptions& 
     double t0 = 0, t1 = 1e9;
     medium.bounds().intersect(rays[r], t0, t1);
     const double tau = 0.5 * gaussian_puff_line_integral(spec, rays[r], t0, t1);
-    MediumPoint scratch;
     const double reference = std::exp(-tau);
     const MeanEstimate e = estimate(o, target(0.005, reference), static_cast<std::uint64_t>(r) << 40,
                                     [&](Rng& rng) {
+                                      MediumPoint scratch;
                                       return estimate_transmittance(medium, rays[r], 1e9, lambda,
                                                                     rng, scratch);
                                     });
     rows.push_back(row(fmt::format("puff-transmittance ray {}", r + 1), "transmittance", reference,
                        e, 0.005));
   }
+  return rows;
+}
+
+std::optional<SlabReference> find_slab_reference(const std::string& csv_path, const SlabSpec& slab) {
+  std::ifstream in(csv_path);
+  if (!in) throw InputError(csv_path, "", "cannot open the slab reference table");
+  const std::string incidence =
+      slab.incidence == SlabIncidence::kDiffuse
+          ? "diffuse_isotropic"
+          : (slab.mu0 == 1.0 ? "collimated_normal" : fmt::format("collimated_mu0={}", slab.mu0));
+  std::string line;
+  std::getline(in, line);
+  if (!line.empty() && line.back() == '\r') line.pop_back();
+  if (line.rfind("albedo,tau,g,incidence,R_total,T_total,T_unscattered,source", 0) != 0)
+    throw InputError(csv_path, "line 1",
+                     "expected the header albedo,tau,g,incidence,R_total,T_total,T_unscattered,source");
+  std::optional<SlabReference> published;
+  for (int number = 2; std::getline(in, line); ++number) {
+    if (!line.empty() && line.back() == '\r') line.pop_back();  // CRLF tables
+    if (line.empty()) continue;
+    std::vector<std::string> f;
+    std::size_t start = 0;
+    for (int k = 0; k < 7; ++k) {
+      const std::size_t comma = line.find(',', start);
+      if (comma == std::string::npos)
+        throw InputError(csv_path, fmt::format("line {}", number), "expected 8 comma-separated fields");
+      f.push_back(line.substr(start, comma - start));
+      start = comma + 1;
+    }
+    std::string source = line.substr(start);
+    if (source.size() >= 2 && source.front() == '"') source = source.substr(1, source.size() - 2);
+    double v[6];
+    const int columns[6] = {0, 1, 2, 4, 5, 6};
+    for (int k = 0; k < 6; ++k) {
+      try {
+        std::size_t used = 0;
+        v[k] = std::stod(f[columns[k]], &used);
+        if (used != f[columns[k]].size()) throw std::invalid_argument("trailing");
+      } catch (const std::exception&) {
+        if (k == 2 && f[2] == "any") { v[k] = slab.g; continue; }
+        throw InputError(csv_path, fmt::format("line {}", number),
+                         fmt::format("field {} ('{}') is not a number", columns[k] + 1, f[columns[k]]));
+      }
+    }
+    auto same = [](double a, double b) { return std::abs(a - b) <= 1e-9 * std::max(1.0, std::abs(b)); };
+    if (!(same(v[0], slab.albedo) && same(v[1], slab.tau) && same(v[2], slab.g) && f[3] == incidence))
+      continue;
+    const SlabReference r{v[3], v[4], v[5], source};
+    // Converged DISORT rows first; otherwise the first row that matches.
+    if (source.rfind("computed: DISORT", 0) == 0) return r;
+    if (!published) published = r;
+  }
+  return published;
+}
+
+std::vector<ValidationRow> validate_slab(const SlabSpec& slab, const std::optional<SlabReference>& ref,
+                                        const ValidationOptions& o) {
+  check_options(o);
+  check("--albedo", slab.albedo, 0.0, 1.0, "albedo must lie in [0, 1]");
+  check("--tau", slab.tau, 1e-6, 100.0, "optical thickness must lie in [1e-6, 100]");
+  check("--g", slab.g, -0.999, 0.999, "g must lie in [-0.999, 0.999]");
+  check("--mu0", slab.mu0, 0.01, 1.0, "the cosine of the beam's zenith angle must lie in [0.01, 1]");
+  check("--half-width", slab.half_width_m, 1e-3, 1e9, "the half-width must lie in [0.001, 1e9] m");
+  if (slab.incidence == SlabIncidence::kDiffuse && slab.mu0 != 1.0)
+    throw InputError("", "--mu0", "applies to collimated incidence only");
+
+  // A slab 1 m thick, σt = τ /m, laterally ±half_width (docs/validation.md:
+  // "Laterally infinite slabs"), non-emitting (0 K), at one wavelength.
+  constexpr double kThickness = 1.0, kWavelength = 0.55;
+  const double w = slab.half_width_m;
+  Scene scene;
+  scene.medium = std::make_shared<HomogeneousMedium>(
+      BBox3({-w, -w, 0}, {w, w, kThickness}), std::vector<double>{kWavelength},
+      std::vector<double>{slab.tau * (1 - slab.albedo)}, std::vector<double>{slab.tau * slab.albedo},
+      std::vector<double>{slab.g}, 0.0);
+  const SpectralNode node = monochromatic(kWavelength, scene.medium->wavelengths_um());
+  const SpectralLerp lambda = node.lerp();
+  PathTracerSettings pt;
+  // The unscattered beam is scored by ratio tracking (T_direct); camera rays
+  // must not see the sun's disc as well.
+  pt.camera_sees_sun = false;
+
+  // Fluxes by reciprocity: the radiance L leaving a face, averaged over
+  // cosine-distributed directions, is F/π. Collimated: the sun (a 0.01° disc)
+  // at zenith angle acos μ0 gives irradiance E0 μ0 on the top face, so
+  // R = π L↑/(E0 μ0). Diffuse: the sky is L0 above the horizon and black
+  // below, the incident flux π L0, so R = L↑/L0.
+  double norm = 0.0;
+  Vec3 beam(0, 0, -1);  // direction of travel of the unscattered beam
+  if (slab.incidence == SlabIncidence::kCollimated) {
+    scene.sun.enabled = true;
+    scene.sun.azimuth_deg = 0.0;
+    scene.sun.elevation_deg = std::asin(slab.mu0) * 180.0 / std::numbers::pi;
+    scene.sun.angular_diameter_deg = 0.01;
+    beam = -scene.sun.direction();
+    norm = std::numbers::pi / (scene.sun.irradiance(kWavelength) * slab.mu0);
+  } else {
+    scene.sky = Sky::blackbody(5778.0, false);
+    norm = 1.0 / planck_radiance(kWavelength, 5778.0);
+  }
+  const bool diffuse = slab.incidence == SlabIncidence::kDiffuse;
+
+  auto up_ray = [](Rng& rng, double z) {  // a cosine-distributed upward direction
+    return Ray{{0, 0, z}, sample_cosine_hemisphere(rng.uniform(), rng.uniform())};
+  };
+  // Unscattered transmittance along the beam (collimated), or along a
+  // cosine-distributed direction (diffuse: its mean is 2 E3(τ)).
+  auto direct = [&](Rng& rng) {
+    MediumPoint scratch;
+    const Ray ray = diffuse ? up_ray(rng, -1.0) : Ray{{0, 0, kThickness + 1.0}, beam};
+    return estimate_transmittance(*scene.medium, ray, std::numeric_limits<double>::infinity(), lambda,
+                                  rng, scratch);
+  };
+  auto reflected = [&](Rng& rng) {
+    Ray ray = up_ray(rng, kThickness + 1.0);
+    ray.direction = -ray.direction;  // looking down at the top face
+    return norm * trace_path(scene, ray, node, rng, pt);
+  };
+  // Diffuse: the camera below sees the sky through the slab, so L↓ holds the
+  // unscattered part. Collimated: scattered light plus the beam's T_direct.
+  auto transmitted = [&](Rng& rng) {
+    const double scattered = norm * trace_path(scene, up_ray(rng, -1.0), node, rng, pt);
+    return diffuse ? scattered : scattered + direct(rng);
+  };
+
+  const double tol = 0.01;
+  auto run = [&](const char* quantity, std::uint64_t stream, auto&& sample, double reference,
+                 bool judged) {
+    const MeanEstimate e = judged ? estimate(o, target(tol, reference), stream, sample)
+                                  : estimate(o, 1e-5, stream, sample, 0.5 * tol);
+    ValidationRow r = judged ? row("", quantity, reference, e, tol)
+                             : ValidationRow{"", quantity, 0.0, e.mean, e.stderr_mean, tol, true, e.samples};
+    r.judged = judged;
+    return r;
+  };
+  // T_direct is judged against its closed form always: e^{−τ/μ0} or 2 E3(τ).
+  const double direct_exact =
+      diffuse ? 2.0 * boost::math::expint(3, slab.tau) : std::exp(-slab.tau / slab.mu0);
+  std::vector<ValidationRow> rows;
+  rows.push_back(run("R", 0, reflected, ref ? ref->r : 0.0, ref.has_value() && ref->r > 0.0));
+  rows.push_back(run("T", 1ull << 40, transmitted, ref ? ref->t : 0.0, ref.has_value() && ref->t > 0.0));
+  rows.push_back(run("T_direct", 2ull << 40, direct, direct_exact, direct_exact > 1e-12));
+  const std::string name =
+      fmt::format("slab albedo={} tau={} g={} {}", slab.albedo, slab.tau, slab.g,
+                  diffuse ? std::string("diffuse")
+                          : (slab.mu0 == 1.0 ? std::string("normal") : fmt::format("mu0={}", slab.mu0)));
+  for (auto& r : rows) r.case_name = name;
   return rows;
 }
 

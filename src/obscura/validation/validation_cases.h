@@ -7,6 +7,7 @@
 // and the standard error itself below tolerance·|reference| (enough samples to
 // tell a `tolerance` bias apart from noise).
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -21,6 +22,7 @@ struct ValidationRow {
   double tolerance = 0;  // relative
   bool pass = false;
   long long samples = 0;
+  bool judged = true;  // false: no reference for these parameters, obtained only
   double relative_error() const { return reference != 0 ? (obtained - reference) / reference : obtained; }
 };
 
@@ -29,6 +31,7 @@ struct ValidationOptions {
   // error is below half the tolerance (at most 5e7).
   int samples = 0;
   std::uint64_t seed = 1;
+  int threads = 0;  // 0: all cores; results do not depend on it
 };
 
 // White furnace: a conservative (albedo 1) cube of optical side τ and
@@ -48,5 +51,36 @@ std::vector<ValidationRow> validate_single_scatter(double tau, double g, const V
 // Transmittance by ratio tracking through a voxelised Gaussian puff (128³) on
 // three rays, against e^{−τ} with τ from the erf closed form.
 std::vector<ValidationRow> validate_puff_transmittance(const ValidationOptions& o);
+
+// Total reflectance R, total transmittance T (unscattered part included) and
+// unscattered transmittance T_direct of a laterally infinite, index-matched,
+// non-emitting slab of optical thickness τ, albedo and HG asymmetry g, lit by a
+// collimated beam at zenith cosine μ0 or by isotropic diffuse radiance from
+// above (docs/validation.md, "Slab reflectance and transmittance").
+enum class SlabIncidence { kCollimated, kDiffuse };
+
+struct SlabSpec {
+  double albedo = 0.9, tau = 1.0, g = 0.5;
+  SlabIncidence incidence = SlabIncidence::kCollimated;
+  double mu0 = 1.0;             // collimated only; 1: normal incidence
+  double half_width_m = 1e6;    // the slab is 1 m thick and ±half_width wide
+};
+
+struct SlabReference {
+  double r = 0, t = 0, t_direct = 0;
+  std::string source;
+};
+
+// The row of a slab table (data/validation/slab_reference.csv: albedo, tau, g,
+// incidence, R_total, T_total, T_unscattered, source) for these parameters, the
+// converged DISORT row when there is one; nullopt when none matches. Throws
+// InputError naming the file and line for a malformed table.
+std::optional<SlabReference> find_slab_reference(const std::string& csv_path, const SlabSpec& slab);
+
+// Rows R, T and T_direct. R and T are judged against `reference` (within 1 %
+// or 3 standard errors) when given and non-zero, else reported unjudged;
+// T_direct is judged against its closed form, e^{−τ/μ0} or 2 E3(τ).
+std::vector<ValidationRow> validate_slab(const SlabSpec& slab, const std::optional<SlabReference>& reference,
+                                         const ValidationOptions& o);
 
 }  // namespace obscura
