@@ -180,5 +180,39 @@ TEST(Renderer, PathTracerIsBitIdenticalWithOneAndTwoThreads) {
   }
 }
 
+// A target relative standard error: pixels keep sampling (in rounds of
+// samples_per_pixel) until every band meets it or the cap is reached; the
+// result is still independent of the thread count.
+TEST(Renderer, PathTracerMeetsATargetRelativeStandardError) {
+  Scene scene = test_scene(4);
+  scene.settings.method = "path-tracer";
+  scene.settings.target_relative_stderr = 0.02;
+  scene.settings.max_samples_per_pixel = 2048;
+  RenderOptions one, two;
+  one.threads = 1;
+  two.threads = 2;
+  const SensorImage a = render_sensor(scene, scene.sensors[0], one);
+  const SensorImage b = render_sensor(scene, scene.sensors[0], two);
+  const std::size_t pixels = a.bands[0].radiance.size();
+  EXPECT_GT(a.stats.rays, 4 * pixels);  // some pixels needed more than one round
+  EXPECT_LE(a.stats.rays, 2048 * pixels);
+  EXPECT_EQ(a.stats.rays, b.stats.rays);
+  int capped = 0;
+  for (std::size_t i = 0; i < pixels; ++i) {
+    const std::uint32_t n = a.samples_per_pixel[i];
+    EXPECT_EQ(n % 4, 0u);
+    if (n + 4 > 2048) {  // the cap: the next round would exceed it
+      ++capped;
+      continue;
+    }
+    for (const auto& band : a.bands)
+      EXPECT_LE(band.radiance_stderr[i], 0.02 * band.radiance[i] * (1 + 1e-6)) << band.band.name() << " " << i;
+  }
+  EXPECT_LT(capped, static_cast<int>(pixels / 4));
+  for (std::size_t i = 0; i < a.bands.size(); ++i)
+    EXPECT_EQ(0, std::memcmp(a.bands[i].radiance.data(), b.bands[i].radiance.data(),
+                             a.bands[i].radiance.size() * sizeof(float)));
+}
+
 }  // namespace
 }  // namespace obscura

@@ -200,6 +200,22 @@ TEST(SceneLoader, SkyByTemperatureOrByZenithTable) {
   EXPECT_NE(load_error(doc).find("/sky/temperature"), std::string::npos);
 }
 
+TEST(SceneLoader, TargetStandardErrorIsForThePathTracer) {
+  auto doc = minimal_scene();
+  doc["render"]["target_relative_stderr"] = 0.01;
+  EXPECT_NE(load_error(doc).find("target_relative_stderr"), std::string::npos);
+  doc["render"]["method"] = "path-tracer";
+  EXPECT_NEAR(parse_scene(doc, "scene.json").settings.target_relative_stderr, 0.01, 1e-15);
+  doc["render"]["target_relative_stderr"] = -1;
+  EXPECT_NE(load_error(doc).find("/render/target_relative_stderr"), std::string::npos);
+  doc["render"]["target_relative_stderr"] = 0.01;
+  doc["render"]["max_samples_per_pixel"] = 0;
+  EXPECT_NE(load_error(doc).find("/render/max_samples_per_pixel"), std::string::npos);
+  doc["render"]["max_samples_per_pixel"] = 64;
+  doc["render"]["samples_per_pixel"] = 0;
+  EXPECT_NE(load_error(doc).find("/render/samples_per_pixel"), std::string::npos);  // zero samples
+}
+
 TEST(SceneLoader, SyntaxErrorNamesLineAndColumn) {
   const auto path = std::filesystem::temp_directory_path() / "obscura_syntax_error.json";
   {

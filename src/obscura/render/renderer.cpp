@@ -13,6 +13,16 @@
 #include "obscura/render/volume_path_tracer.h"
 
 namespace obscura {
+namespace {
+
+// Standard error of the mean of n independent samples with sum s and sum of squares s2.
+double standard_error(double s, double s2, int n) {
+  if (n < 2) return 0.0;
+  const double mean = s / n;
+  return std::sqrt(std::max(0.0, s2 / n - mean * mean) / (n - 1));
+}
+
+}  // namespace
 
 SensorImage render_sensor(const Scene& scene, const Sensor& sensor, const RenderOptions& options) {
   const auto start = std::chrono::steady_clock::now();
@@ -40,7 +50,10 @@ SensorImage render_sensor(const Scene& scene, const Sensor& sensor, const Render
                            path_tracer ? std::vector<float>(pixels) : std::vector<float>()});
   }
 
-  std::atomic<std::uint64_t> segments{0}, evals{0};
+  image.samples_per_pixel.assign(pixels, 0);
+  std::atomic<std::uint64_t> segments{0}, evals{0}, samples_taken{0};
+  const double target = settings.target_relative_stderr;
+  const int max_spp = std::max(settings.max_samples_per_pixel, settings.samples_per_pixel);
   std::atomic<int> rows_done{0};
   const int spp = settings.samples_per_pixel;
   // Stratify the pixel into a near-square grid of spp cells.
@@ -55,7 +68,11 @@ SensorImage render_sensor(const Scene& scene, const Sensor& sensor, const Render
       Rng rng(options.seed, pixel);
       std::vector<double> sum_l(image.bands.size(), 0.0), sum_t(image.bands.size(), 0.0),
           sum_l2(image.bands.size(), 0.0);
-      for (int s = 0; s < spp; ++s) {
+      int n = 0;  // samples taken in this pixel
+      // Rounds of spp stratified samples; more than one only for a path tracer
+      // with a target relative standard error.
+      for (bool more = true; more;) {
+      for (int s = 0; s < spp; ++s, ++n) {
         double px = x + 0.5, py = y + 0.5;
         if (spp > 1) {
           const int sx = s % strata_x, sy = s / strata_x;
@@ -110,17 +127,21 @@ SensorImage render_sensor(const Scene& scene, const Sensor& sensor, const Render
           sum_t[b] += band_t / nodes.quadrature().response_integral();
         }
       }
+      more = false;
+      if (path_tracer && target > 0.0 && n + spp <= max_spp)
+        for (std::size_t b = 0; b < sum_l.size(); ++b)
+          more = more || standard_error(sum_l[b], sum_l2[b], n) > target * std::abs(sum_l[b] / n);
+      }
+      samples_taken += n;
+      image.samples_per_pixel[pixel] = static_cast<std::uint32_t>(n);
       for (std::size_t b = 0; b < image.bands.size(); ++b) {
-        const double l = sum_l[b] / spp;
+        const double l = sum_l[b] / n;
         image.bands[b].radiance[pixel] = static_cast<float>(l);
-        image.bands[b].transmittance[pixel] = static_cast<float>(sum_t[b] / spp);
+        image.bands[b].transmittance[pixel] = static_cast<float>(sum_t[b] / n);
         image.bands[b].apparent_temperature[pixel] =
             static_cast<float>(band_nodes[b].quadrature().apparent_temperature(l));
-        if (path_tracer) {
-          // Standard error of the mean of spp independent band-radiance samples.
-          const double var = spp > 1 ? std::max(0.0, sum_l2[b] / spp - l * l) * spp / (spp - 1) : 0.0;
-          image.bands[b].radiance_stderr[pixel] = static_cast<float>(std::sqrt(var / spp));
-        }
+        if (path_tracer)
+          image.bands[b].radiance_stderr[pixel] = static_cast<float>(standard_error(sum_l[b], sum_l2[b], n));
       }
     }
     segments += stats.segments;
@@ -129,7 +150,7 @@ SensorImage render_sensor(const Scene& scene, const Sensor& sensor, const Render
     if (options.progress) options.progress(done, height);
   });
 
-  image.stats.rays = pixels * spp;
+  image.stats.rays = samples_taken;
   image.stats.segments = segments;
   image.stats.integrand_evals = evals;
   image.stats.seconds =

@@ -33,6 +33,9 @@ struct SensorImage {
   std::string sensor;
   int width = 0, height = 0;
   std::vector<BandImage> bands;
+  // Samples taken per pixel (row-major): samples_per_pixel, or more with a
+  // target relative standard error (path tracer).
+  std::vector<std::uint32_t> samples_per_pixel;
   RenderStats stats;
 };
 

@@ -323,6 +323,12 @@ Scene parse_scene(const nlohmann::json& doc, const std::filesystem::path& file) 
     const long long spp = r->integer_or("samples_per_pixel", s.samples_per_pixel);
     if (spp < 1 || spp > 65536) throw r->error("samples_per_pixel", "must lie in [1, 65536]");
     s.samples_per_pixel = static_cast<int>(spp);
+    s.target_relative_stderr = r->number_or("target_relative_stderr", 0.0);
+    if (!(s.target_relative_stderr >= 0 && s.target_relative_stderr < 1))
+      throw r->error("target_relative_stderr", "must lie in [0, 1) (0: a fixed sample count)");
+    const long long max_spp = r->integer_or("max_samples_per_pixel", s.max_samples_per_pixel);
+    if (max_spp < 1 || max_spp > 1048576) throw r->error("max_samples_per_pixel", "must lie in [1, 1048576]");
+    s.max_samples_per_pixel = static_cast<int>(max_spp);
     const long long nodes = r->integer_or("spectral_nodes_per_band", s.spectral_nodes_per_band);
     if (nodes < 1 || nodes > 64) throw r->error("spectral_nodes_per_band", "must lie in [1, 64]");
     s.spectral_nodes_per_band = static_cast<int>(nodes);
@@ -337,6 +343,9 @@ Scene parse_scene(const nlohmann::json& doc, const std::filesystem::path& file) 
     s.threads = static_cast<int>(threads);
     r->finish();
   }
+  if (scene.settings.target_relative_stderr > 0 && scene.settings.method != "path-tracer")
+    throw root.error("render", "target_relative_stderr applies to the path tracer only (set "
+                               "/render/method to \"path-tracer\")");
   if (scene.sun.enabled && scene.settings.method != "path-tracer")
     throw root.error("sun", "the sun is rendered by the path tracer only: set /render/method to "
                             "\"path-tracer\" (emission-absorption has no scattering source)");
