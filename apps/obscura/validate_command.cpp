@@ -24,7 +24,11 @@ Command add_validate_command(CLI::App& app) {
     std::optional<double> tau, g, albedo;
     double temperature = 300.0;
     std::string incidence = "normal";
-    double mu0 = 1.0, half_width = 1e6;
+    double mu0 = 1.0;
+    std::optional<double> half_width;
+    std::string method = "path-tracer";
+    PhotonMapSettings photon_map;
+    std::string form = "hybrid";
     std::string reference;
     std::optional<int> samples;
     std::uint64_t seed = 1;
@@ -50,7 +54,20 @@ Command add_validate_command(CLI::App& app) {
   cmd->add_option("--mu0", o->mu0, "Slab, collimated: cosine of the beam's zenith angle")
       ->capture_default_str();
   cmd->add_option("--half-width", o->half_width,
-                  "Slab half-width, m (the slab is 1 m thick; docs/validation.md measures the edge loss)")
+                  "Slab half-width, m (the slab is 1 m thick; default 1e6, photonmap 20; "
+                  "docs/validation.md measures the edge loss)");
+  cmd->add_option("--method", o->method, "Solver: path-tracer, or photonmap (judged at 2 %)")
+      ->check(CLI::IsMember({"path-tracer", "photonmap"}))
+      ->capture_default_str();
+  cmd->add_option("--photons", o->photon_map.photons_per_node, "photonmap: photons launched")
+      ->capture_default_str();
+  cmd->add_option("--k", o->photon_map.k, "photonmap: nearest photons per estimate")->capture_default_str();
+  cmd->add_option("--max-radius", o->photon_map.max_radius_m, "photonmap: search radius cap, m")
+      ->capture_default_str();
+  cmd->add_option("--step", o->photon_map.step_m, "photonmap: longest marching segment, m")
+      ->capture_default_str();
+  cmd->add_option("--form", o->form, "photonmap: hybrid (shadow rays for single scattering) or pure")
+      ->check(CLI::IsMember({"hybrid", "pure"}))
       ->capture_default_str();
   cmd->add_option("--reference", o->reference,
                   "Slab reference table (default: data/validation/slab_reference.csv)");
@@ -65,7 +82,20 @@ Command add_validate_command(CLI::App& app) {
   cmd->add_flag("--json", o->json, "Print a JSON array of rows instead of a table");
   return {cmd, [o]() {
             const double g = o->g.value_or(0.5);
-            const ValidationOptions options{o->samples.value_or(0), o->seed, o->threads};
+            ValidationOptions options;
+            options.samples = o->samples.value_or(0);
+            options.seed = o->seed;
+            options.threads = o->threads;
+            options.method = o->method;
+            options.photon_map = o->photon_map;
+            options.photon_map.pure = o->form == "pure";
+            const bool photonmap = o->method == "photonmap";
+            if (photonmap) {
+              if (o->photon_map.photons_per_node < 1) throw InputError("", "--photons", "must be at least 1");
+              if (o->photon_map.k < 1) throw InputError("", "--k", "must be at least 1");
+              if (!(o->photon_map.max_radius_m > 0)) throw InputError("", "--max-radius", "must be > 0 m");
+              if (!(o->photon_map.step_m > 0)) throw InputError("", "--step", "must be > 0 m");
+            }
             std::vector<ValidationRow> rows;
             auto add = [&](std::vector<ValidationRow> r) { rows.insert(rows.end(), r.begin(), r.end()); };
             const bool all = o->name == "all";
@@ -79,7 +109,7 @@ Command add_validate_command(CLI::App& app) {
               if (o->incidence == "normal" && o->mu0 != 1.0)
                 throw InputError("", "--mu0", "give --incidence collimated with --mu0 (normal means mu0 = 1)");
               slab.mu0 = o->mu0;
-              slab.half_width_m = o->half_width;
+              slab.half_width_m = o->half_width.value_or(photonmap ? 20.0 : 1e6);
               const std::string table = o->reference.empty()
                                             ? (data_directory() / "validation" / "slab_reference.csv").string()
                                             : o->reference;

@@ -216,6 +216,27 @@ TEST(SceneLoader, TargetStandardErrorIsForThePathTracer) {
   EXPECT_NE(load_error(doc).find("/render/samples_per_pixel"), std::string::npos);  // zero samples
 }
 
+TEST(SceneLoader, PhotonMapSettings) {
+  auto doc = minimal_scene();
+  doc["render"]["photon_map"] = {{"photons", 1000}};
+  EXPECT_NE(load_error(doc).find("/render/photon_map"), std::string::npos);  // not the photonmap method
+  doc["render"]["method"] = "photonmap";
+  doc["render"]["photon_map"] = {{"photons", 5000}, {"k", 30}, {"max_radius_m", 0.5}, {"step_m", 0.1},
+                                 {"form", "pure"}};
+  const Scene s = parse_scene(doc, "scene.json");
+  EXPECT_EQ(s.settings.photon_map.photons_per_node, 5000);
+  EXPECT_EQ(s.settings.photon_map.k, 30);
+  EXPECT_TRUE(s.settings.photon_map.pure);
+  doc["render"]["photon_map"]["form"] = "mixed";
+  EXPECT_NE(load_error(doc).find("/render/photon_map/form"), std::string::npos);
+  doc["render"]["photon_map"]["form"] = "hybrid";
+  doc["render"]["photon_map"]["k"] = 0;
+  EXPECT_NE(load_error(doc).find("/render/photon_map/k"), std::string::npos);
+  doc["render"]["photon_map"]["k"] = 30;
+  doc["render"]["photon_map"]["photons"] = 0;
+  EXPECT_NE(load_error(doc).find("/render/photon_map/photons"), std::string::npos);
+}
+
 TEST(SceneLoader, SyntaxErrorNamesLineAndColumn) {
   const auto path = std::filesystem::temp_directory_path() / "obscura_syntax_error.json";
   {

@@ -9,6 +9,7 @@
 #include "obscura/core/parallel.h"
 #include "obscura/core/rng.h"
 #include "obscura/render/emission_absorption.h"
+#include "obscura/render/photon_map_integrator.h"
 #include "obscura/render/spectral_nodes.h"
 #include "obscura/render/volume_path_tracer.h"
 
@@ -27,7 +28,9 @@ double standard_error(double s, double s2, int n) {
 SensorImage render_sensor(const Scene& scene, const Sensor& sensor, const RenderOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   const RenderSettings& settings = scene.settings;
-  const bool path_tracer = settings.method == "path-tracer";
+  const bool photon_mapping = settings.method == "photonmap";
+  // Both Monte Carlo methods report standard errors and the exact line-of-sight transmittance.
+  const bool path_tracer = settings.method == "path-tracer" || photon_mapping;
   if (!path_tracer && settings.method != "emission-absorption")
     throw Error("render: unknown method '" + settings.method + "'");
   const PinholeCamera& cam = sensor.camera;
@@ -50,6 +53,16 @@ SensorImage render_sensor(const Scene& scene, const Sensor& sensor, const Render
                            path_tracer ? std::vector<float>(pixels) : std::vector<float>()});
   }
 
+  // Pass 1 of photon mapping: photon maps for every node of every band.
+  std::unique_ptr<PhotonMapIntegrator> photon_map;
+  if (photon_mapping) {
+    const auto t0 = std::chrono::steady_clock::now();
+    photon_map = std::make_unique<PhotonMapIntegrator>(scene, band_nodes, settings.photon_map, options.seed,
+                                                       options.threads);
+    image.stats.photons = photon_map->photon_count();
+    image.stats.photon_bytes = photon_map->memory_bytes();
+    image.stats.photon_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  }
   image.samples_per_pixel.assign(pixels, 0);
   std::atomic<std::uint64_t> segments{0}, evals{0}, samples_taken{0};
   const double target = settings.target_relative_stderr;
@@ -95,10 +108,11 @@ SensorImage render_sensor(const Scene& scene, const Sensor& sensor, const Render
           const int n = static_cast<int>(nodes.size());
           double band_l = 0, band_t = 0;
           if (path_tracer) {
-            // One path per spectral node.
+            if (photon_mapping) photon_map->radiance(ray, static_cast<int>(b), rng, radiance.data());
+            // One path per spectral node (or one photon-map estimate).
             for (int i = 0; i < n; ++i) {
               const SpectralNode& nd = nodes.nodes()[i];
-              band_l += nd.weight_um * trace_path(scene, ray, nd, rng);
+              band_l += nd.weight_um * (photon_mapping ? radiance[i] : trace_path(scene, ray, nd, rng));
               band_t += nd.weight_um * std::exp(-nd.lerp()(line_of_sight_tau.data()));
             }
           } else {

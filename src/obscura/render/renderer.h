@@ -27,6 +27,10 @@ struct RenderStats {
   std::uint64_t segments = 0;  // medium cells visited, summed over bands
   std::uint64_t integrand_evals = 0;
   double seconds = 0;
+  // Photon mapping: photons stored over all maps, their memory, pass-1 time.
+  std::uint64_t photons = 0;
+  std::uint64_t photon_bytes = 0;
+  double photon_seconds = 0;
 };
 
 struct SensorImage {

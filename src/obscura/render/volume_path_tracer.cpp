@@ -5,30 +5,11 @@
 #include <numbers>
 
 #include "obscura/core/sampling.h"
+#include "obscura/render/direct_lighting.h"
 #include "obscura/medium/phase_function.h"
 
 namespace obscura {
 namespace {
-
-// Transmittance from `origin` along `direction` to infinity (the sun or the
-// sky): zero when a surface is in the way, else ratio tracking through the medium.
-double transmittance_to_infinity(const Scene& scene, const Vec3& origin, const Vec3& direction,
-                                 const SpectralLerp& lambda, Rng& rng, MediumPoint& scratch) {
-  const Ray ray{origin, direction};
-  SurfaceHit hit;
-  if (intersect_surfaces(scene.surfaces, ray, 1e-9, std::numeric_limits<double>::infinity(), hit))
-    return 0.0;
-  if (!scene.medium) return 1.0;
-  return estimate_transmittance(*scene.medium, ray, std::numeric_limits<double>::infinity(), lambda,
-                                rng, scratch);
-}
-
-// A direction drawn uniformly over the sun's disc (pdf 1/Ω, so that the
-// estimator of ∫ L_sun f dω is E_λ f(ω)).
-Vec3 sample_sun_direction(const Sun& sun, Rng& rng) {
-  return local_to_world(sun.direction(),
-                        sample_uniform_cone(rng.uniform(), rng.uniform(), sun.cos_half_angle()));
-}
 
 // Power heuristic (Veach 1997, eq. 9.13, β = 2) for a sample of density `a`
 // combined with one of density `b`.

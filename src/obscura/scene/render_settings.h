@@ -5,9 +5,23 @@
 
 namespace obscura {
 
+// Volume photon mapping ("method": "photonmap"; render/photon_map_integrator.h).
+struct PhotonMapSettings {
+  long long photons_per_node = 200000;  // launched per spectral node
+  int k = 50;                            // nearest photons per estimate
+  double max_radius_m = 1.0;             // search radius cap
+  double radius_mean_free_paths = 0.5;   // … and at most this many local mean free paths 1/σt
+  double step_m = 0.25;                  // longest marching segment
+  bool pure = false;                     // the paper's form: photons for all in-scattering
+  bool camera_sees_sun = true;           // off only where a caller scores the direct beam itself
+};
+
+
 struct RenderSettings {
-  // "emission-absorption" (exact, scattering as extinction only) or
-  // "path-tracer" (unbiased Monte Carlo of the full RTE, with standard errors).
+  // "emission-absorption" (exact, scattering as extinction only),
+  // "path-tracer" (unbiased Monte Carlo of the full RTE, with standard errors)
+  // or "photonmap" (volume photon mapping: consistent, biased by the density
+  // estimate, much faster for multiple scattering).
   std::string method = "emission-absorption";
   // Emission-absorption: 1 = the pixel centre, more = stratified jitter.
   // Path tracer: paths per pixel (each covering every spectral node).
@@ -21,6 +35,7 @@ struct RenderSettings {
   double relative_tolerance = 1e-6;  // emission integral per cell
   std::uint64_t seed = 1;
   int threads = 0;  // 0: all cores
+  PhotonMapSettings photon_map;
 };
 
 }  // namespace obscura

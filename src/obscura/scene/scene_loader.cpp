@@ -316,10 +316,30 @@ Scene parse_scene(const nlohmann::json& doc, const std::filesystem::path& file) 
   if (auto r = root.optional_object("render")) {
     RenderSettings& s = scene.settings;
     s.method = r->string_or("method", s.method);
-    if (s.method != "emission-absorption" && s.method != "path-tracer")
+    if (s.method != "emission-absorption" && s.method != "path-tracer" && s.method != "photonmap")
       throw r->error("method", fmt::format("unknown method '{}' (available: emission-absorption, "
-                                           "path-tracer)",
+                                           "path-tracer, photonmap)",
                                            s.method));
+    if (auto pm = r->optional_object("photon_map")) {
+      if (s.method != "photonmap")
+        throw r->error("photon_map", "applies to \"method\": \"photonmap\" only");
+      PhotonMapSettings& p = s.photon_map;
+      p.photons_per_node = pm->integer_or("photons", p.photons_per_node);
+      if (p.photons_per_node < 1 || p.photons_per_node > 2000000000LL)
+        throw pm->error("photons", "must lie in [1, 2e9] (photons launched per spectral node)");
+      const long long k = pm->integer_or("k", p.k);
+      if (k < 1 || k > 4096) throw pm->error("k", "must lie in [1, 4096]");
+      p.k = static_cast<int>(k);
+      p.max_radius_m = pm->positive_or("max_radius_m", p.max_radius_m);
+      p.step_m = pm->positive_or("step_m", p.step_m);
+      p.radius_mean_free_paths = pm->positive_or("radius_mean_free_paths", p.radius_mean_free_paths);
+      const std::string form = pm->string_or("form", "hybrid");
+      if (form != "hybrid" && form != "pure")
+        throw pm->error("form", "must be \"hybrid\" (shadow rays for single scattering) or \"pure\" "
+                                "(photons for all scattering, the source paper's form)");
+      p.pure = form == "pure";
+      pm->finish();
+    }
     const long long spp = r->integer_or("samples_per_pixel", s.samples_per_pixel);
     if (spp < 1 || spp > 65536) throw r->error("samples_per_pixel", "must lie in [1, 65536]");
     s.samples_per_pixel = static_cast<int>(spp);
@@ -343,12 +363,12 @@ Scene parse_scene(const nlohmann::json& doc, const std::filesystem::path& file) 
     s.threads = static_cast<int>(threads);
     r->finish();
   }
-  if (scene.settings.target_relative_stderr > 0 && scene.settings.method != "path-tracer")
-    throw root.error("render", "target_relative_stderr applies to the path tracer only (set "
-                               "/render/method to \"path-tracer\")");
-  if (scene.sun.enabled && scene.settings.method != "path-tracer")
-    throw root.error("sun", "the sun is rendered by the path tracer only: set /render/method to "
-                            "\"path-tracer\" (emission-absorption has no scattering source)");
+  if (scene.settings.target_relative_stderr > 0 && scene.settings.method == "emission-absorption")
+    throw root.error("render", "target_relative_stderr applies to the Monte Carlo methods only (set "
+                               "/render/method to \"path-tracer\" or \"photonmap\")");
+  if (scene.sun.enabled && scene.settings.method == "emission-absorption")
+    throw root.error("sun", "the sun lights clouds through scattering: set /render/method to "
+                            "\"path-tracer\" or \"photonmap\" (emission-absorption has no scattering source)");
   root.string_or("description", "");
   root.finish();
   stage_scene(scene, 0.0);

@@ -11,6 +11,8 @@
 #include <string>
 #include <vector>
 
+#include "obscura/scene/render_settings.h"
+
 namespace obscura {
 
 struct ValidationRow {
@@ -32,6 +34,10 @@ struct ValidationOptions {
   int samples = 0;
   std::uint64_t seed = 1;
   int threads = 0;  // 0: all cores; results do not depend on it
+  // "path-tracer", or "photonmap" (judged at 2 % at least; the slab then needs
+  // a finite --half-width: photons spread over the slab's whole width).
+  std::string method = "path-tracer";
+  PhotonMapSettings photon_map;
 };
 
 // White furnace: a conservative (albedo 1) cube of optical side τ and

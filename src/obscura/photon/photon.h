@@ -1,0 +1,37 @@
+#pragma once
+// A stored volume photon (Jensen & Christensen 1998, §3): where it was stored,
+// which way it was travelling and the power it carries. One photon map holds
+// the photons of one spectral node (the medium's coefficients depend on
+// wavelength), so the power is a single number, not a spectrum.
+//
+// Layout (28 bytes, 4-byte aligned, no padding):
+//   offset  0  float position_m[3]  world position, metres
+//   offset 12  float direction[3]   unit direction of travel when stored
+//   offset 24  float power          spectral power at the map's node, W µm⁻¹
+// Floats, not doubles: millions of photons are stored per node and a float
+// places a photon to ~1e-7 of its distance from the origin (0.1 mm at 1 km),
+// far below any density-estimation radius. Queries compute distances in double
+// from these floats (photon/photon_map.h). The struct is an aggregate so the
+// tracer can write Photon{{x, y, z}, {dx, dy, dz}, power}.
+#include <cstddef>
+
+#include "obscura/core/vec3.h"
+
+namespace obscura {
+
+struct Photon {
+  float position_m[3];
+  float direction[3];
+  float power;  // W µm⁻¹ at the map's spectral node
+
+  Vec3 position() const { return {position_m[0], position_m[1], position_m[2]}; }
+  Vec3 dir() const { return {direction[0], direction[1], direction[2]}; }
+};
+
+// The layout above is what the memory figures (docs/photon-map.md) and any
+// future file or GPU copy of a map rely on.
+static_assert(sizeof(Photon) == 28, "Photon must stay 7 floats with no padding");
+static_assert(alignof(Photon) == 4);
+static_assert(offsetof(Photon, direction) == 12 && offsetof(Photon, power) == 24);
+
+}  // namespace obscura
