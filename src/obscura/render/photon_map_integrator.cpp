@@ -202,15 +202,18 @@ void PhotonMapIntegrator::radiance(const Ray& ray, int band, Rng& rng, double* o
         background[j] += reflectance * std::numbers::inv_pi * cos_sun * scene_.sun.irradiance(node.wavelength_um) *
                          transmittance_to_infinity(scene_, p, to_sun, node.lerp(), rng, scratch);
     }
-    // Final gathering: the radiance along one cosine-distributed ray, found by
-    // this integrator itself (cloud light and emission on the surface, other
-    // surfaces, the sky), continued with probability ρ = 1 − ε so that its
-    // expectation is ρ L and the recursion ends.
-    if (reflectance > 0.0 && depth < kMaxGatherDepth && rng.uniform() < reflectance) {
+    // Final gathering: ρ = 1 − ε times the radiance along one
+    // cosine-distributed ray, found by this integrator itself (cloud light and
+    // emission on the surface, other surfaces, the sky). The camera's surface
+    // always gathers, weighted by ρ (a roulette there would multiply the noise
+    // of a dark ground by 1/ρ); deeper gathers continue with probability ρ and
+    // weight 1, so the recursion ends without bias.
+    if (reflectance > 0.0 && depth < kMaxGatherDepth && (depth == 0 || rng.uniform() < reflectance)) {
+      const double weight = depth == 0 ? reflectance : 1.0;
       const Ray gather{p, local_to_world(hit.normal, sample_cosine_hemisphere(rng.uniform(), rng.uniform()))};
       std::vector<double> gathered(n, 0.0);
       radiance(gather, band, rng, gathered.data(), depth + 1);
-      for (int j = 0; j < n; ++j) background[j] += gathered[j];
+      for (int j = 0; j < n; ++j) background[j] += weight * gathered[j];
     }
   } else {
     for (int j = 0; j < n; ++j) {
