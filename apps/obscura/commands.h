@@ -28,5 +28,6 @@ Command add_make_puff_command(CLI::App& app, const Invocation& invocation);
 Command add_validate_command(CLI::App& app);
 Command add_cloud_state_command(CLI::App& app);
 Command add_mie_command(CLI::App& app);
+Command add_optics_command(CLI::App& app);
 
 }  // namespace obscura::cli

@@ -25,6 +25,7 @@ int main(int argc, char** argv) {
   add(obscura::cli::add_validate_command(app));
   add(obscura::cli::add_cloud_state_command(app));
   add(obscura::cli::add_mie_command(app));
+  add(obscura::cli::add_optics_command(app));
 
   try {
     app.parse(argc, argv);
