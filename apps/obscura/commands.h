@@ -29,5 +29,6 @@ Command add_validate_command(CLI::App& app);
 Command add_cloud_state_command(CLI::App& app);
 Command add_mie_command(CLI::App& app);
 Command add_optics_command(CLI::App& app);
+Command add_prepare_command(CLI::App& app, const Invocation& invocation);
 
 }  // namespace obscura::cli

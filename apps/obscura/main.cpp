@@ -26,6 +26,7 @@ int main(int argc, char** argv) {
   add(obscura::cli::add_cloud_state_command(app));
   add(obscura::cli::add_mie_command(app));
   add(obscura::cli::add_optics_command(app));
+  add(obscura::cli::add_prepare_command(app, invocation));
 
   try {
     app.parse(argc, argv);
