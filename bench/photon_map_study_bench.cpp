@@ -4,9 +4,9 @@
 // 0.55 µm, multiple scattering dominating; and at 10 µm, emission dominating),
 // and the photon map's error versus photon count and k. Usage:
 //   bench_photon_map_study [--width 64] [--height 48] [--reference-spp 1024]
-//                          [--scene visible|lwir|both] [--threads N] [--csv FILE]
-// Prints one row per render; --csv writes them for the plot in
-// docs/validation.md (scripts/plot-photon-map-study). Nothing is asserted.
+//                          [--scene visible|lwir|both] [--threads N] [--csv FILE] [--plot FILE.png]
+// Prints one row per render; --csv writes them, --plot draws relative RMSE
+// against wall time (docs/images/photon_map_study.png). Nothing is asserted.
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -14,6 +14,7 @@
 #include <fstream>
 #include <string>
 
+#include "obscura/io/line_plot.h"
 #include "obscura/render/renderer.h"
 #include "obscura/scene/example_scenes.h"
 
@@ -68,7 +69,11 @@ double relative_noise(const std::vector<float>& stderr_l, const std::vector<floa
 
 int main(int argc, char** argv) {
   int width = 64, height = 48, reference_spp = 1024, threads = 0;
-  std::string which = "both", csv;
+  std::string which = "both", csv, plot_path;
+  LinePlot plot;
+  plot.title = "Photon map vs path tracer: error against a converged path-traced image";
+  plot.x = {"wall time (s)", true, std::nullopt, std::nullopt};
+  plot.y = {"relative RMSE", true, std::nullopt, std::nullopt};
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string a = argv[i];
     if (a == "--width") width = std::atoi(argv[i + 1]);
@@ -77,6 +82,7 @@ int main(int argc, char** argv) {
     else if (a == "--scene") which = argv[i + 1];
     else if (a == "--threads") threads = std::atoi(argv[i + 1]);
     else if (a == "--csv") csv = argv[i + 1];
+    else if (a == "--plot") plot_path = argv[i + 1];
     else { std::fprintf(stderr, "unknown option %s\n", a.c_str()); return 2; }
   }
   std::ofstream out;
@@ -107,19 +113,34 @@ int main(int argc, char** argv) {
       if (out) out << name << "," << method << "," << spp << "," << photons << "," << k << "," << r.seconds
                    << "," << e << "\n";
     };
+    PlotSeries pt_series{name + ": path tracer, 1–64 spp", {}, {}, PlotSeries::Style::kLineAndMarkers};
     for (int spp : {1, 2, 4, 8, 16, 32, 64}) {
       pt.settings.samples_per_pixel = spp;
-      row("path-tracer", spp, 0, 0, render(pt, threads, 7));
+      const Result r = render(pt, threads, 7);
+      row("path-tracer", spp, 0, 0, r);
+      pt_series.x.push_back(r.seconds);
+      pt_series.y.push_back(relative_rmse(r.radiance, ref.radiance));
     }
+    plot.series.push_back(pt_series);
     Scene pm = make_study_scene(s, width, height, "photonmap");
-    for (long long photons : {20000LL, 100000LL, 500000LL})
-      for (int k : {20, 50, 100})
-        for (int spp : {1, 4}) {
+    for (int spp : {1, 4}) {
+      PlotSeries pm_series{name + ": photon map, k 50, 2e4–5e5 photons, " + std::to_string(spp) + " spp",
+                           {}, {}, PlotSeries::Style::kLineAndMarkers};
+      for (long long photons : {20000LL, 100000LL, 500000LL})
+        for (int k : {20, 50, 100}) {
           pm.settings.samples_per_pixel = spp;
           pm.settings.photon_map.photons_per_node = photons;
           pm.settings.photon_map.k = k;
-          row("photonmap", spp, photons, k, render(pm, threads, 7));
+          const Result r = render(pm, threads, 7);
+          row("photonmap", spp, photons, k, r);
+          if (k == 50) {
+            pm_series.x.push_back(r.seconds);
+            pm_series.y.push_back(relative_rmse(r.radiance, ref.radiance));
+          }
         }
+      plot.series.push_back(pm_series);
+    }
   }
+  if (!plot_path.empty()) write_line_plot_png(plot_path, plot);
   return 0;
 }
