@@ -104,18 +104,21 @@ TEST(DispersionConfig, ErrorsNameTheFileAndJsonPath) {
             "scenario.json|/dispersion/devices/1/yield_factor|expected a number, found string");
   EXPECT_EQ(error_of([](auto& d) { d["wind"]["speed_m_s"] = 0; }),
             "scenario.json|/dispersion/wind/speed_m_s|expected a number > 0 m/s, found 0");
-  EXPECT_EQ(error_of([](auto& d) { d["wind"]["power_law_exponent"] = 1.5; }),
-            "scenario.json|/dispersion/wind/power_law_exponent|expected a number in [0, 1], found 1.5");
+  EXPECT_EQ(
+      error_of([](auto& d) { d["wind"]["power_law_exponent"] = 1.5; }),
+      "scenario.json|/dispersion/wind/power_law_exponent|expected a number in [0, 1], found 1.5");
   EXPECT_EQ(error_of([](auto& d) { d["devices"][0]["burn_time_s"] = -1; }),
             "scenario.json|/dispersion/devices/0/burn_time_s|expected a number >= 0 s, found -1");
   EXPECT_EQ(error_of([](auto& d) { d["devices"][1]["temperature_decay_time_s"] = 0; }),
-            "scenario.json|/dispersion/devices/1/temperature_decay_time_s|expected a number > 0 s, found 0");
+            "scenario.json|/dispersion/devices/1/temperature_decay_time_s|expected a number > 0 s, "
+            "found 0");
 }
 
 TEST(DispersionConfig, RejectsUnknownKeysAtEveryLevel) {
   for (const auto& [edit, path] :
        std::vector<std::pair<std::function<void(nlohmann::json&)>, std::string>>{
-           {[](auto& d) { d["devices"][1]["agent_mas_g"] = 3; }, "/dispersion/devices/1/agent_mas_g"},
+           {[](auto& d) { d["devices"][1]["agent_mas_g"] = 3; },
+            "/dispersion/devices/1/agent_mas_g"},
            {[](auto& d) { d["wind"]["direction_deg"] = 3; }, "/dispersion/wind/direction_deg"},
            {[](auto& d) { d["mixing_height_m"] = 300; }, "/dispersion/mixing_height_m"}}) {
     const std::string e = error_of(edit);

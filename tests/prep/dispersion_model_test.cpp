@@ -142,8 +142,8 @@ TEST(DispersionModel, GroundReflectionDoublesGroundConcentrationOfAGroundRelease
   // just above the ground sees two equal contributions.
   const DispersionModel model(single_device());
   const PuffState s = model.puffs_at(10.0)[0];
-  const double single = s.mass_g / (std::pow(2 * std::numbers::pi, 1.5) *
-                                    s.sigma_horizontal_m * s.sigma_horizontal_m * s.sigma_vertical_m);
+  const double single = s.mass_g / (std::pow(2 * std::numbers::pi, 1.5) * s.sigma_horizontal_m *
+                                    s.sigma_horizontal_m * s.sigma_vertical_m);
   const Vec3 p(s.centre_m.x, s.centre_m.y, 0.0);
   EXPECT_NEAR(model.concentration_g_m3(p, 10.0) / single, 2.0, 1e-12);
   EXPECT_EQ(model.concentration_g_m3(p + Vec3(0, 0, -0.1), 10.0), 0.0);  // below the ground

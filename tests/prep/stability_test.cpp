@@ -7,9 +7,8 @@
 namespace obscura {
 namespace {
 
-constexpr StabilityClass kClasses[6] = {StabilityClass::kA, StabilityClass::kB,
-                                        StabilityClass::kC, StabilityClass::kD,
-                                        StabilityClass::kE, StabilityClass::kF};
+constexpr StabilityClass kClasses[6] = {StabilityClass::kA, StabilityClass::kB, StabilityClass::kC,
+                                        StabilityClass::kD, StabilityClass::kE, StabilityClass::kF};
 
 // DOMAIN.md §3.4, "Instantaneous puff σ (Slade 1968 / CCPS 1999)", transcribed
 // here independently of the implementation: σy = σx = a x^b, σz = c x^d.
@@ -27,12 +26,18 @@ double briggs_y(int row, double x) {
 }
 double briggs_z(int row, double x) {
   switch (row) {
-    case 0: return 0.20 * x;
-    case 1: return 0.12 * x;
-    case 2: return 0.08 * x * std::pow(1 + 0.0002 * x, -0.5);
-    case 3: return 0.06 * x * std::pow(1 + 0.0015 * x, -0.5);
-    case 4: return 0.03 * x / (1 + 0.0003 * x);
-    default: return 0.016 * x / (1 + 0.0003 * x);
+    case 0:
+      return 0.20 * x;
+    case 1:
+      return 0.12 * x;
+    case 2:
+      return 0.08 * x * std::pow(1 + 0.0002 * x, -0.5);
+    case 3:
+      return 0.06 * x * std::pow(1 + 0.0015 * x, -0.5);
+    case 4:
+      return 0.03 * x / (1 + 0.0003 * x);
+    default:
+      return 0.016 * x / (1 + 0.0003 * x);
   }
 }
 
@@ -112,7 +117,8 @@ TEST(Stability, ParsesClassesAndSetsAndRejectsOthers) {
     EXPECT_EQ(*parse_stability_class(names[r]), kClasses[r]);
     EXPECT_EQ(to_string(kClasses[r]), names[r]);
   }
-  for (const char* bad : {"", "G", "a", "AB", "D "}) EXPECT_FALSE(parse_stability_class(bad)) << bad;
+  for (const char* bad : {"", "G", "a", "AB", "D "})
+    EXPECT_FALSE(parse_stability_class(bad)) << bad;
   EXPECT_EQ(parse_sigma_set("ccps-puff"), SigmaSet::kCcpsPuff);
   EXPECT_EQ(parse_sigma_set("briggs-open-country"), SigmaSet::kBriggsOpenCountry);
   EXPECT_FALSE(parse_sigma_set("briggs"));

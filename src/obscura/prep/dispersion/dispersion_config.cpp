@@ -21,12 +21,14 @@ class Checker {
   void finite(const std::string& field, double v) const {
     if (!std::isfinite(v)) fail(field, "expected a finite number");
   }
+  // `unit` is "" for dimensionless values, else " g", " m/s", ...
   void positive(const std::string& field, double v, const char* unit) const {
-    if (!(std::isfinite(v) && v > 0)) fail(field, fmt::format("expected a number > 0 {}, found {}", unit, v));
+    if (!(std::isfinite(v) && v > 0))
+      fail(field, fmt::format("expected a number > 0{}, found {}", unit, v));
   }
   void non_negative(const std::string& field, double v, const char* unit) const {
     if (!(std::isfinite(v) && v >= 0))
-      fail(field, fmt::format("expected a number >= 0 {}, found {}", unit, v));
+      fail(field, fmt::format("expected a number >= 0{}, found {}", unit, v));
   }
 
  private:
@@ -37,19 +39,19 @@ void validate_device(const Checker& check, const SmokeDevice& d, const Dispersio
                      const std::string& base) {
   if (!(std::isfinite(d.x_m) && std::isfinite(d.y_m)))
     check.fail(base + "position_m", "expected finite coordinates");
-  check.non_negative(base + "release_height_m", d.release_height_m, "m");
+  check.non_negative(base + "release_height_m", d.release_height_m, " m");
   check.finite(base + "start_s", d.start_s);
-  check.non_negative(base + "burn_time_s", d.burn_time_s, "s");
-  check.positive(base + "agent_mass_g", d.agent_mass_g, "g");
+  check.non_negative(base + "burn_time_s", d.burn_time_s, " s");
+  check.positive(base + "agent_mass_g", d.agent_mass_g, " g");
   check.positive(base + "yield_factor", d.yield_factor, "");
-  check.positive(base + "initial_sigma_m", d.initial_sigma_m, "m");
+  check.positive(base + "initial_sigma_m", d.initial_sigma_m, " m");
   check.finite(base + "source_temperature_excess_k", d.source_temperature_excess_k);
   if (!(c.ambient_temperature_k + d.source_temperature_excess_k > 0))
     check.fail(base + "source_temperature_excess_k",
                fmt::format("ambient {} K plus excess {} K must stay above 0 K",
                            c.ambient_temperature_k, d.source_temperature_excess_k));
-  check.positive(base + "temperature_decay_time_s", d.temperature_decay_time_s, "s");
-  check.positive(base + "puffs_per_second", d.puffs_per_second, "per second");
+  check.positive(base + "temperature_decay_time_s", d.temperature_decay_time_s, " s");
+  check.positive(base + "puffs_per_second", d.puffs_per_second, " per second");
   const double puffs = d.burn_time_s * d.puffs_per_second;
   if (puffs > static_cast<double>(kMaxPuffsPerDevice))
     check.fail(base + "puffs_per_second",
@@ -87,15 +89,15 @@ SmokeDevice parse_device(JsonObject o, int index) {
 void validate_dispersion_config(const DispersionConfig& c) {
   const Checker check(c);
   if (c.devices.empty()) check.fail("devices", "expected at least one smoke device");
-  check.positive("wind/speed_m_s", c.wind.speed_m_s, "m/s");
+  check.positive("wind/speed_m_s", c.wind.speed_m_s, " m/s");
   check.finite("wind/from_deg", c.wind.from_deg);
-  check.positive("wind/reference_height_m", c.wind.reference_height_m, "m");
+  check.positive("wind/reference_height_m", c.wind.reference_height_m, " m");
   if (!(std::isfinite(c.wind.power_law_exponent) && c.wind.power_law_exponent >= 0 &&
         c.wind.power_law_exponent <= 1))
     check.fail("wind/power_law_exponent",
                fmt::format("expected a number in [0, 1], found {}", c.wind.power_law_exponent));
-  check.positive("wind/minimum_height_m", c.wind.minimum_height_m, "m");
-  check.positive("ambient_temperature_k", c.ambient_temperature_k, "K");
+  check.positive("wind/minimum_height_m", c.wind.minimum_height_m, " m");
+  check.positive("ambient_temperature_k", c.ambient_temperature_k, " K");
   for (std::size_t i = 0; i < c.devices.size(); ++i)
     validate_device(check, c.devices[i], c, fmt::format("devices/{}/", i));
 }

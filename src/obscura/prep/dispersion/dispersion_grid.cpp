@@ -25,7 +25,7 @@ constexpr double kMinFillSigmas = 5.0;
 // A slab of z planes is the unit of parallel work; its accumulators (two
 // doubles per voxel) are capped at this many voxels, 4 MiB, so that they stay
 // in a core's cache while every puff of the frame is added: measured 25 % faster
-// than 64 MiB slabs on large grids (docs/dispersion.md, "Performance").
+// than 64 MiB slabs on large grids (docs/dispersion.md, "Benchmark").
 constexpr std::size_t kMaxSlabVoxels = std::size_t{1} << 18;
 
 void check_times(const std::vector<double>& times_s, const std::string& source) {
@@ -111,8 +111,7 @@ AxisRange reach(double centre, double sigma, double origin, double h, double rea
 // out[i − r.lo] += ½ [erf((e_{i+1} − c)/(√2 σ)) − erf((e_i − c)/(√2 σ))].
 // Each edge's erf is a function of i alone, so a voxel's fraction does not
 // depend on the range asked for: the slab decomposition cannot change a value.
-void add_fractions(double centre, double sigma, double origin, double h, AxisRange r,
-                   double* out) {
+void add_fractions(double centre, double sigma, double origin, double h, AxisRange r, double* out) {
   const double inv = 1.0 / (std::numbers::sqrt2 * sigma);
   double prev = std::erf((origin + r.lo * h - centre) * inv);
   for (int i = r.lo; i < r.hi; ++i) {
@@ -203,7 +202,8 @@ std::size_t dispersion_series_checked_bytes(const DispersionGridLayout& layout,
                                             std::size_t scratch_bytes) {
   const GridDims& d = layout.dims;
   std::uint64_t bytes = 0;
-  if (__builtin_mul_overflow(static_cast<std::uint64_t>(d.nx), static_cast<std::uint64_t>(d.ny), &bytes) ||
+  if (__builtin_mul_overflow(static_cast<std::uint64_t>(d.nx), static_cast<std::uint64_t>(d.ny),
+                             &bytes) ||
       __builtin_mul_overflow(bytes, static_cast<std::uint64_t>(d.nz), &bytes) ||
       __builtin_mul_overflow(bytes, static_cast<std::uint64_t>(frame_count), &bytes) ||
       __builtin_mul_overflow(bytes, std::uint64_t{2 * sizeof(float)}, &bytes) ||

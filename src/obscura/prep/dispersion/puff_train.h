@@ -13,11 +13,11 @@ namespace obscura {
 
 // One puff as released.
 struct Puff {
-  Vec3 release_point_m;           // (x, y, H), world metres
+  Vec3 release_point_m;  // (x, y, H), world metres
   double release_time_s = 0;
-  double mass_g = 0;              // aerosol mass (agent × yield) carried
-  Vec3 velocity_m_s;              // advection velocity, constant over the puff's life
-  double initial_sigma_m = 0;     // σ0, added in quadrature
+  double mass_g = 0;                    // aerosol mass (agent × yield) carried
+  Vec3 velocity_m_s;                    // advection velocity, constant over the puff's life
+  double initial_sigma_m = 0;           // σ0, added in quadrature
   double temperature_excess_k = 0;      // at release
   double temperature_decay_time_s = 1;  // τ of the excess
 };

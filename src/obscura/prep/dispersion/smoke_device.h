@@ -8,13 +8,13 @@
 namespace obscura {
 
 struct SmokeDevice {
-  std::string name;              // for messages; the config names unnamed ones "device N"
-  double x_m = 0;                // release point, east (world x), m
-  double y_m = 0;                // release point, north (world y), m
-  double release_height_m = 0;   // effective release height H above the ground (>= 0), m
-  double start_s = 0;            // when the release begins, s
-  double burn_time_s = 0;        // release duration (>= 0; 0: instantaneous burst), s
-  double agent_mass_g = 0;       // fill of obscurant agent (> 0), g
+  std::string name;             // for messages; the config names unnamed ones "device N"
+  double x_m = 0;               // release point, east (world x), m
+  double y_m = 0;               // release point, north (world y), m
+  double release_height_m = 0;  // effective release height H above the ground (>= 0), m
+  double start_s = 0;           // when the release begins, s
+  double burn_time_s = 0;       // release duration (>= 0; 0: instantaneous burst), s
+  double agent_mass_g = 0;      // fill of obscurant agent (> 0), g
   // Aerosol mass per agent mass (> 0): WP and RP take up water and give about
   // 3–8 (DOMAIN.md §2.6); 1 for agents released as they are (TA, fog oil).
   double yield_factor = 1.0;

@@ -11,10 +11,10 @@
 namespace obscura {
 
 struct Wind {
-  double speed_m_s = 3.0;           // u_ref at reference_height_m (> 0)
-  double from_deg = 270.0;          // meteorological "from" direction
-  double reference_height_m = 10.0; // z_ref, where speed_m_s is measured (> 0)
-  double power_law_exponent = 0.15; // p (>= 0; 0: uniform in height)
+  double speed_m_s = 3.0;            // u_ref at reference_height_m (> 0)
+  double from_deg = 270.0;           // meteorological "from" direction
+  double reference_height_m = 10.0;  // z_ref, where speed_m_s is measured (> 0)
+  double power_law_exponent = 0.15;  // p (>= 0; 0: uniform in height)
   // Heights below this use the speed at this height: the power law gives
   // u(0) = 0, which would leave a ground release in place forever.
   // GasDispersion.jl's Gaussian puff takes the same floor (h_min = 1 m).
