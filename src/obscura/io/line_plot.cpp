@@ -2,12 +2,10 @@
 
 #include <cairo.h>
 #include <fmt/format.h>
-#include <png.h>
 
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
-#include <csetjmp>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -18,7 +16,7 @@
 #include <utility>
 
 #include "obscura/core/error.h"
-#include "obscura/io/atomic_file.h"
+#include "obscura/io/png_file.h"
 
 namespace obscura {
 namespace {
@@ -859,54 +857,6 @@ LinePlotRaster render_line_plot(const LinePlot& plot) {
   return out;
 }
 
-// ---- PNG ----------------------------------------------------------------------
-// The same libpng pattern as png_preview.cpp, whose encoder is private to it.
-// libpng reports errors by longjmp: encode_png holds only trivially
-// destructible locals, set before setjmp and never changed after, so the
-// jump skips no destructor and reads no indeterminate variable.
-namespace {
-
-struct PngErrorState {
-  char message[256] = "unknown libpng error";
-};
-
-[[noreturn]] void on_png_error(png_structp png, png_const_charp message) {
-  auto* state = static_cast<PngErrorState*>(png_get_error_ptr(png));
-  std::snprintf(state->message, sizeof state->message, "%s", message);
-  std::longjmp(png_jmpbuf(png), 1);
-}
-
-void on_png_warning(png_structp, png_const_charp) {}
-
-bool encode_png(std::FILE* file, int width, int height, png_bytep* rows, png_textp texts,
-                int text_count, PngErrorState* error) {
-  png_structp png =
-      png_create_write_struct(PNG_LIBPNG_VER_STRING, error, on_png_error, on_png_warning);
-  if (png == nullptr) return false;
-  png_infop info = png_create_info_struct(png);
-  if (info == nullptr) {
-    png_destroy_write_struct(&png, nullptr);
-    return false;
-  }
-  if (setjmp(png_jmpbuf(png))) {
-    png_destroy_write_struct(&png, &info);
-    return false;
-  }
-  png_init_io(png, file);
-  png_set_IHDR(png, info, static_cast<png_uint_32>(width), static_cast<png_uint_32>(height), 8,
-               PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,
-               PNG_FILTER_TYPE_DEFAULT);
-  // Text before IDAT, so readers that stop at the image data still see it.
-  if (text_count > 0) png_set_text(png, info, texts, text_count);
-  png_write_info(png, info);
-  png_write_image(png, rows);
-  png_write_end(png, info);
-  png_destroy_write_struct(&png, &info);
-  return true;
-}
-
-}  // namespace
-
 void write_line_plot_png(const std::filesystem::path& path, const LinePlot& plot,
                          const std::string& provenance_json) {
   const std::string file = path.string();
@@ -915,35 +865,9 @@ void write_line_plot_png(const std::filesystem::path& path, const LinePlot& plot
   }
   const LinePlotRaster raster = render_line_plot(plot);
 
-  // libpng wants mutable char* for key and text; these copies outlive the write.
-  std::string key = "obscura.provenance";
-  std::string text = provenance_json;
-  png_text chunk;
-  std::memset(&chunk, 0, sizeof chunk);
-  chunk.key = key.data();
-  chunk.text = text.data();
-  chunk.compression = PNG_ITXT_COMPRESSION_NONE;  // iTXt: UTF-8 (paths, units)
-  const int text_count = provenance_json.empty() ? 0 : 1;
-
-  std::vector<png_bytep> rows(static_cast<size_t>(raster.height));
-  for (int y = 0; y < raster.height; ++y) {
-    rows[y] = const_cast<png_bytep>(raster.rgb.data() + static_cast<size_t>(y) * raster.width * 3);
-  }
-  AtomicFile out(path);
-  std::FILE* f = std::fopen(out.temp_path().c_str(), "wb");
-  if (f == nullptr) {
-    throw Error(fmt::format("cannot open {}: {}", out.temp_path().string(), std::strerror(errno)));
-  }
-  PngErrorState error;
-  const bool ok =
-      encode_png(f, raster.width, raster.height, rows.data(), &chunk, text_count, &error);
-  const bool write_failed = std::ferror(f) != 0;
-  const bool close_failed = std::fclose(f) != 0;
-  if (!ok) throw Error(fmt::format("cannot write PNG {}: {}", file, error.message));
-  if (write_failed || close_failed) {
-    throw Error(fmt::format("cannot write PNG {}: {}", file, std::strerror(errno)));
-  }
-  out.commit();
+  std::map<std::string, std::string> chunks;
+  if (!provenance_json.empty()) chunks["obscura.provenance"] = provenance_json;
+  write_rgb_png(path, raster.width, raster.height, raster.rgb, chunks);
 }
 
 }  // namespace obscura

@@ -3,6 +3,7 @@
 // upscaled), a title, and a vertical colour bar with tick labels and units.
 // Numbers for analysis belong in the EXR; the PNG carries the same provenance
 // as text chunks so a preview found on its own can still be traced.
+#include "obscura/io/png_file.h"
 #include <array>
 #include <cstdint>
 #include <filesystem>
@@ -47,12 +48,5 @@ PreviewRaster render_preview(int width, int height, const std::vector<float>& va
 void write_png_preview(const std::filesystem::path& path, int width, int height,
                        const std::vector<float>& values, const PreviewOptions& options,
                        const std::map<std::string, std::string>& text_chunks);
-
-// Readers, mainly for tests. Throw InputError if the file is not a readable PNG.
-std::map<std::string, std::string> read_png_text_chunks(const std::filesystem::path& path);
-struct PngSize {
-  int width = 0, height = 0;  // px
-};
-PngSize read_png_size(const std::filesystem::path& path);
 
 }  // namespace obscura
