@@ -1,6 +1,6 @@
 #include "obscura/io/line_plot.h"
 
-#include <cairo.h>
+#include "obscura/io/cairo_canvas.h"
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -238,7 +238,6 @@ constexpr double kTitleFontSize = 16;
 constexpr double kLabelFontSize = 14;
 constexpr double kTickFontSize = 12;
 constexpr double kLegendFontSize = 12;
-constexpr const char* kFontFamily = "DejaVu Sans";
 // Clip lines to this far outside the frame before cairo sees them: cairo's
 // 24.8 fixed point overflows near 8e6 px, and points far outside an explicit
 // range could map beyond that. (Clipping in doubles keeps the visible part to
@@ -251,31 +250,11 @@ constexpr double kClipSlack = 1000;
 constexpr int kSegmentsPerStroke = 64;
 constexpr double kFarOutside = 1e6;  // plot lengths; see AxisMap
 
-struct CairoSurfaceDeleter {
-  void operator()(cairo_surface_t* s) const { cairo_surface_destroy(s); }
-};
-struct CairoDeleter {
-  void operator()(cairo_t* c) const { cairo_destroy(c); }
-};
-using SurfacePtr = std::unique_ptr<cairo_surface_t, CairoSurfaceDeleter>;
-using CairoPtr = std::unique_ptr<cairo_t, CairoDeleter>;
-
-void set_font(cairo_t* cr, double size) {
-  cairo_select_font_face(cr, kFontFamily, CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
-  cairo_set_font_size(cr, size);
-}
-
-double text_advance(cairo_t* cr, const std::string& text) {
-  cairo_text_extents_t extents;
-  cairo_text_extents(cr, text.c_str(), &extents);
-  return extents.x_advance;
-}
-
-cairo_font_extents_t font_extents(cairo_t* cr) {
-  cairo_font_extents_t extents;
-  cairo_font_extents(cr, &extents);
-  return extents;
-}
+using cairo_canvas::CairoPtr;
+using cairo_canvas::font_extents;
+using cairo_canvas::set_font;
+using cairo_canvas::SurfacePtr;
+using cairo_canvas::text_advance;
 
 void set_rgb(cairo_t* cr, std::array<std::uint8_t, 3> c) {
   cairo_set_source_rgb(cr, c[0] / 255.0, c[1] / 255.0, c[2] / 255.0);
@@ -839,21 +818,7 @@ LinePlotRaster render_line_plot(const LinePlot& plot) {
                             cairo_status_to_string(cairo_status(cr))));
   }
   cairo_surface_flush(surface.get());
-  const unsigned char* data = cairo_image_surface_get_data(surface.get());
-  const int stride = cairo_image_surface_get_stride(surface.get());
-  out.rgb.resize(static_cast<size_t>(out.width) * out.height * 3);
-  for (int y = 0; y < out.height; ++y) {
-    for (int x = 0; x < out.width; ++x) {
-      // ARGB32: a native-endian uint32, alpha on top; the canvas is opaque, so
-      // premultiplication changes nothing.
-      std::uint32_t argb;
-      std::memcpy(&argb, data + static_cast<size_t>(y) * stride + static_cast<size_t>(x) * 4, 4);
-      std::uint8_t* p = &out.rgb[(static_cast<size_t>(y) * out.width + x) * 3];
-      p[0] = static_cast<std::uint8_t>(argb >> 16);
-      p[1] = static_cast<std::uint8_t>(argb >> 8);
-      p[2] = static_cast<std::uint8_t>(argb);
-    }
-  }
+  out.rgb = cairo_canvas::surface_rgb(surface.get());
   return out;
 }
 

@@ -1,6 +1,6 @@
 #include "obscura/io/png_preview.h"
 
-#include <cairo.h>
+#include "obscura/io/cairo_canvas.h"
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -34,7 +34,6 @@ constexpr int kTickCount = 5;
 constexpr double kTitleFontSize = 15;
 constexpr double kTickFontSize = 12;
 constexpr double kUnitsFontSize = 13;
-constexpr const char* kFontFamily = "DejaVu Sans";
 constexpr std::uint8_t kNanGrey = 128;
 
 // 16 evenly spaced samples (entries 0, 17, ..., 255) of matplotlib's "inferno"
@@ -56,31 +55,11 @@ std::uint8_t to_byte(double c) {
   return static_cast<std::uint8_t>(std::lround(std::clamp(c, 0.0, 1.0) * 255.0));
 }
 
-struct CairoSurfaceDeleter {
-  void operator()(cairo_surface_t* s) const { cairo_surface_destroy(s); }
-};
-struct CairoDeleter {
-  void operator()(cairo_t* c) const { cairo_destroy(c); }
-};
-using SurfacePtr = std::unique_ptr<cairo_surface_t, CairoSurfaceDeleter>;
-using CairoPtr = std::unique_ptr<cairo_t, CairoDeleter>;
-
-void set_font(cairo_t* cr, double size) {
-  cairo_select_font_face(cr, kFontFamily, CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
-  cairo_set_font_size(cr, size);
-}
-
-double text_advance(cairo_t* cr, const std::string& text) {
-  cairo_text_extents_t extents;
-  cairo_text_extents(cr, text.c_str(), &extents);
-  return extents.x_advance;
-}
-
-cairo_font_extents_t font_extents(cairo_t* cr) {
-  cairo_font_extents_t extents;
-  cairo_font_extents(cr, &extents);
-  return extents;
-}
+using cairo_canvas::CairoPtr;
+using cairo_canvas::font_extents;
+using cairo_canvas::set_font;
+using cairo_canvas::SurfacePtr;
+using cairo_canvas::text_advance;
 
 void validate_image(const std::string& file, int width, int height,
                     const std::vector<float>& values) {
@@ -246,18 +225,7 @@ PreviewRaster render(const std::string& file, int width, int height,
                             cairo_status_to_string(cairo_status(cr.get()))));
   }
   cairo_surface_flush(surface.get());
-
-  out.rgb.resize(static_cast<size_t>(out.width) * out.height * 3);
-  for (int y = 0; y < out.height; ++y) {
-    for (int x = 0; x < out.width; ++x) {
-      std::uint32_t argb;
-      std::memcpy(&argb, data + static_cast<size_t>(y) * stride + static_cast<size_t>(x) * 4, 4);
-      std::uint8_t* p = &out.rgb[(static_cast<size_t>(y) * out.width + x) * 3];
-      p[0] = static_cast<std::uint8_t>(argb >> 16);
-      p[1] = static_cast<std::uint8_t>(argb >> 8);
-      p[2] = static_cast<std::uint8_t>(argb);
-    }
-  }
+  out.rgb = cairo_canvas::surface_rgb(surface.get());
   return out;
 }
 
