@@ -12,22 +12,12 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.h"
+#include "option_parsing.h"
 #include "obscura/core/error.h"
 #include "obscura/optics/mie.h"
 
 namespace obscura::cli {
 namespace {
-
-// Options are taken as text and converted here, so that every bad value is an
-// InputError naming its option (exit status 1), not a CLI11 conversion error.
-double parse_number(const std::string& text, const char* option) {
-  double v = 0;
-  const char* end = text.data() + text.size();
-  const auto [ptr, ec] = std::from_chars(text.data(), end, v);
-  if (text.empty() || ec != std::errc() || ptr != end || !std::isfinite(v))
-    throw InputError("", option, fmt::format("'{}' is not a finite number", text));
-  return v;
-}
 
 double parse_positive(const std::string& text, const char* option, const char* what) {
   const double v = parse_number(text, option);

@@ -12,20 +12,12 @@
 #include <vector>
 
 #include "commands.h"
+#include "option_parsing.h"
 #include "obscura/core/error.h"
 #include "obscura/optics/material.h"
 
 namespace obscura::cli {
 namespace {
-
-double parse_number(const std::string& text, const char* option) {
-  double v = 0;
-  const char* end = text.data() + text.size();
-  const auto [ptr, ec] = std::from_chars(text.data(), end, v);
-  if (text.empty() || ec != std::errc() || ptr != end || !std::isfinite(v))
-    throw InputError("", option, fmt::format("'{}' is not a finite number", text));
-  return v;
-}
 
 // "0.55,1.064,4,10": wavelengths in µm, each > 0.
 std::vector<double> parse_wavelengths(const std::string& text) {

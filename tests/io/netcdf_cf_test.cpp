@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "obscura/core/error.h"
+#include "support/input_error.h"
 #include "support/temp_dir_test.h"
 
 namespace obscura {
@@ -88,20 +89,8 @@ TestVar coordinate(const std::string& name, std::vector<double> values, const st
   return TestVar{name, NC_DOUBLE, {name}, std::move(values), {{"units", units}}, {}};
 }
 
-// Runs `fn`, which must throw InputError, and returns the error.
-InputError expect_input_error(const std::function<void()>& fn) {
-  try {
-    fn();
-  } catch (const InputError& e) {
-    return e;
-  }
-  ADD_FAILURE() << "expected an InputError";
-  return InputError("", "", "");
-}
-
-bool contains(const std::string& s, const std::string& part) {
-  return s.find(part) != std::string::npos;
-}
+using testing::contains;
+using testing::expect_input_error;
 
 class NetcdfCfTest : public testing::TempDirTest {
  protected:

@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "obscura/core/error.h"
+#include "support/input_error.h"
 #include "support/temp_dir_test.h"
 
 namespace obscura {
@@ -41,20 +42,8 @@ class VtkStructuredPointsTest : public testing::TempDirTest {
   }
 };
 
-// Runs `fn`, which must throw InputError, and returns the error.
-InputError expect_input_error(const std::function<void()>& fn) {
-  try {
-    fn();
-  } catch (const InputError& e) {
-    return e;
-  }
-  ADD_FAILURE() << "expected an InputError";
-  return InputError("", "", "");
-}
-
-bool contains(const std::string& s, const std::string& part) {
-  return s.find(part) != std::string::npos;
-}
+using testing::contains;
+using testing::expect_input_error;
 
 // A 5x4x3 grid (every size distinct, so axis mix-ups show) with random
 // values, a third of them zero, at an offset origin.
