@@ -11,7 +11,7 @@ struct PhotonMapSettings {
   int k = 50;                            // nearest photons per estimate
   double max_radius_m = 1.0;             // search radius cap
   double radius_mean_free_paths = 0.5;   // … and at most this many local mean free paths 1/σt
-  double step_m = 0.25;                  // longest marching segment
+  double step_m = 1.0;                   // longest marching segment (chosen by measurement: docs/validation.md)
   bool pure = false;                     // the paper's form: photons for all in-scattering
   bool camera_sees_sun = true;           // off only where a caller scores the direct beam itself
 };
