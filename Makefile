@@ -6,7 +6,7 @@ PRESET ?= release
 BUILD  := build/$(PRESET)
 JOBS   ?= $(shell nproc)
 
-.PHONY: all deps configure build test demo bench asan clean animated-example
+.PHONY: all deps configure build test demo bench asan clean animated-example smoke-screen-example
 
 all: build
 
@@ -36,3 +36,6 @@ clean:
 
 animated-example: build
 	@OBSCURA=$(BUILD)/apps/obscura/obscura scripts/animated-example
+
+smoke-screen-example: build
+	@OBSCURA=$(BUILD)/apps/obscura/obscura scripts/smoke-screen-example
