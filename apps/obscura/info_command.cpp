@@ -13,7 +13,7 @@ namespace obscura::cli {
 
 Command add_info_command(CLI::App& app) {
   auto* cmd = app.add_subcommand(
-      "info", "Describe a cloud keyframe (.vdb): grid, bounds, spectral samples, value ranges, memory");
+      "info", "Describe a cloud keyframe (.vdb): form, grid, bounds, spectral samples, species, value ranges, memory");
   struct Options {
     std::string file;
     bool json = false;
@@ -29,6 +29,7 @@ Command add_info_command(CLI::App& app) {
               nlohmann::json out = {
                   {"file", info.file.string()},
                   {"file_bytes", info.file_bytes},
+                  {"form", info.form},
                   {"dims", {info.dims.nx, info.dims.ny, info.dims.nz}},
                   {"voxels", info.dims.count()},
                   {"voxel_size_m", p.voxel_size_m},
@@ -49,6 +50,22 @@ Command add_info_command(CLI::App& app) {
                                            {"min", c.min},
                                            {"max", c.max},
                                            {"nonzero_voxels", c.nonzero_voxels}});
+              if (info.form == "species") {
+                out["compact_bytes"] = info.compact_bytes;
+                out["species"] = nlohmann::json::array();
+                for (const auto& sp : info.species)
+                  out["species"].push_back(
+                      {{"name", sp.optics.name},
+                       {"mass_absorption_m2_g", sp.optics.mass_absorption_m2_g},
+                       {"mass_scattering_m2_g", sp.optics.mass_scattering_m2_g},
+                       {"asymmetry", sp.optics.asymmetry},
+                       {"concentration",
+                        {{"name", sp.concentration.name},
+                         {"units", sp.concentration.units},
+                         {"min", sp.concentration.min},
+                         {"max", sp.concentration.max},
+                         {"nonzero_voxels", sp.concentration.nonzero_voxels}}}});
+              }
               std::cout << out.dump(2) << "\n";
               return 0;
             }
@@ -66,8 +83,31 @@ Command add_info_command(CLI::App& app) {
             std::cout << fmt::format("  wavelengths  {} µm ({} spectral samples)\n",
                                      fmt::join(info.wavelengths_um, ", "),
                                      info.wavelengths_um.size());
-            std::cout << fmt::format("  memory       {:.1f} MiB dense in memory\n",
-                                     info.memory_bytes / 1048576.0);
+            if (info.form == "species") {
+              std::cout << fmt::format(
+                  "  form         compact species form: {} species, expanded on reading\n",
+                  info.species.size());
+              std::cout << fmt::format(
+                  "  memory       {:.1f} MiB dense once expanded ({:.1f} MiB of concentration and "
+                  "temperature)\n",
+                  info.memory_bytes / 1048576.0, info.compact_bytes / 1048576.0);
+              for (std::size_t i = 0; i < info.species.size(); ++i) {
+                const SpeciesOptics& sp = info.species[i].optics;
+                const ChannelSummary& c = info.species[i].concentration;
+                std::cout << fmt::format(
+                    "  species {:<4} {}: {} ({}) {:.5g} – {:.5g}, {} non-zero voxels\n", i,
+                    sp.name, c.name, c.units, c.min, c.max, c.nonzero_voxels);
+                std::cout << "      λ (µm)  k_abs (m2/g)  k_sca (m2/g)         g\n";
+                for (std::size_t k = 0; k < sp.wavelengths_um.size(); ++k)
+                  std::cout << fmt::format("  {:>10.6g} {:>13.5g} {:>13.5g} {:>9.4g}\n",
+                                           sp.wavelengths_um[k], sp.mass_absorption_m2_g[k],
+                                           sp.mass_scattering_m2_g[k], sp.asymmetry[k]);
+              }
+            } else {
+              std::cout << "  form         spectral (σa, σs, g per wavelength)\n";
+              std::cout << fmt::format("  memory       {:.1f} MiB dense in memory\n",
+                                       info.memory_bytes / 1048576.0);
+            }
             std::cout << "  channel         units        min          max    non-zero voxels\n";
             for (const auto& c : info.channels)
               std::cout << fmt::format("  {:<14} {:<5} {:>12.5g} {:>12.5g} {:>18}\n", c.name, c.units,

@@ -39,6 +39,7 @@ Command add_prepare_command(CLI::App& app, const Invocation& invocation) {
                 {"dims", {r.dims.nx, r.dims.ny, r.dims.nz}},
                 {"voxel_size_m", r.voxel_size_m},
                 {"material", r.material},
+                {"output_form", r.output_form},
                 {"wavelengths_um", r.wavelengths_um},
                 {"lifecycle",
                  {{"init_end", r.lifecycle.init_end}, {"loop_start", r.lifecycle.loop_start},
@@ -53,9 +54,10 @@ Command add_prepare_command(CLI::App& app, const Invocation& invocation) {
               std::cout << j.dump(2) << "\n";
               return 0;
             }
-            std::cout << fmt::format("{} keyframes of {}×{}×{} voxels ({} m), {} at {} wavelengths, {:.1f} MB\n",
+            std::cout << fmt::format("{} keyframes of {}×{}×{} voxels ({} m), {} at {} wavelengths, {:.1f} MB{}\n",
                                      r.keyframes.size(), r.dims.nx, r.dims.ny, r.dims.nz, r.voxel_size_m,
-                                     r.material, r.wavelengths_um.size(), r.bytes_written / 1e6);
+                                     r.material, r.wavelengths_um.size(), r.bytes_written / 1e6,
+                                     r.output_form == "species" ? " (compact species form)" : "");
             std::cout << fmt::format("times {}–{} s; lifecycle ({}): init_end {}, loop {}–{} (wrap {} s), "
                                      "extinction from {}\n",
                                      r.times_s.front(), r.times_s.back(),

@@ -1,4 +1,3 @@
-#include "support/temp_dir_test.h"
 #include "obscura/io/vdb_keyframe.h"
 
 #include <gtest/gtest.h>
@@ -19,6 +18,8 @@
 
 #include "obscura/core/error.h"
 #include "obscura/core/mat3.h"
+#include "support/temp_dir_test.h"
+#include "support/vdb_edit.h"
 
 namespace obscura {
 namespace {
@@ -84,31 +85,9 @@ void expect_read_error(const fs::path& file, const std::string& field) {
   expect_input_error([&] { read_cloud_keyframe(file); }, file, field);
 }
 
-// Loads every grid and the file metadata of `src`, lets `edit` change them,
-// and writes the result to `dst` with OpenVDB directly (bypassing obscura's
-// writer, which would refuse most of these edits).
-void rewrite_by_hand(const fs::path& src, const fs::path& dst,
-                     const std::function<void(openvdb::GridPtrVec&, openvdb::MetaMap&)>& edit) {
-  openvdb::io::File in(src.string());
-  in.open(false);
-  openvdb::GridPtrVecPtr grids = in.getGrids();
-  openvdb::MetaMap::Ptr meta = in.getMetadata();
-  in.close();
-  edit(*grids, *meta);
-  openvdb::io::File out(dst.string());
-  out.write(*grids, *meta);
-  out.close();
-}
-
-openvdb::FloatGrid::Ptr find_grid(openvdb::GridPtrVec& grids, const std::string& name) {
-  for (auto& g : grids)
-    if (g->getName() == name) return openvdb::gridPtrCast<openvdb::FloatGrid>(g);
-  return nullptr;
-}
-
-void remove_grid(openvdb::GridPtrVec& grids, const std::string& name) {
-  std::erase_if(grids, [&](const openvdb::GridBase::Ptr& g) { return g->getName() == name; });
-}
+using testing::find_grid;
+using testing::remove_grid;
+using testing::rewrite_by_hand;
 
 TEST_F(VdbKeyframeTest, RoundTripIsExact) {
   const VoxelGrid grid = make_random_grid(7);
@@ -151,6 +130,7 @@ TEST_F(VdbKeyframeTest, FileFollowsTheDocumentedConventions) {
   const openvdb::MetaMap::Ptr meta = f.getMetadata();
   EXPECT_EQ(meta->metaValue<std::string>("obscura_format"), "cloud-keyframe");
   EXPECT_EQ(meta->metaValue<openvdb::Int32>("obscura_format_version"), 1);
+  EXPECT_EQ(meta->metaValue<std::string>("obscura_form"), "spectral");
   EXPECT_EQ(meta->metaValue<openvdb::Int32>("spectral_count"), 3);
   char expect_w[128];
   std::snprintf(expect_w, sizeof expect_w, "%.17g,%.17g,%.17g", 0.55, 3.9, 10.6);
@@ -396,6 +376,21 @@ TEST_F(VdbKeyframeErrorTest, PlacementRecordMustMatchTransform) {
   EXPECT_NO_THROW(read_cloud_keyframe(bad_));
 }
 
+TEST_F(VdbKeyframeErrorTest, FormIsSpectralWhenAbsentAndMustBeKnown) {
+  // Files from other tools (and obscura before the species form) have no obscura_form.
+  edit([](openvdb::GridPtrVec&, openvdb::MetaMap& m) { m.removeMeta("obscura_form"); });
+  EXPECT_EQ(inspect_cloud_keyframe(bad_).form, "spectral");
+  edit([](openvdb::GridPtrVec&, openvdb::MetaMap& m) {
+    m.insertMeta("obscura_form", openvdb::StringMetadata("spectra"));
+  });
+  expect_read_error(bad_, "obscura_form");
+  // A species-form file needs its species grids, not spectral ones.
+  edit([](openvdb::GridPtrVec&, openvdb::MetaMap& m) {
+    m.insertMeta("obscura_form", openvdb::StringMetadata("species"));
+  });
+  expect_read_error(bad_, "concentration_units");
+}
+
 TEST_F(VdbKeyframeErrorTest, UnreadableAndNonVdbFiles) {
   const fs::path missing = dir_ / "missing.vdb";
   expect_input_error([&] { read_cloud_keyframe(missing); }, missing, "no such file");
@@ -432,6 +427,8 @@ TEST_F(VdbKeyframeTest, FailedWritesLeaveNothingBehind) {
                      "sigma_s_001 voxel (1,2,3)");
   expect_input_error([&] { write_cloud_keyframe(out, grid, std::nan("")); }, out, "time_s");
   expect_input_error([&] { write_cloud_keyframe(out, grid, 1.0, {{"dims", "1"}}); }, out, "dims");
+  expect_input_error([&] { write_cloud_keyframe(out, grid, 1.0, {{"obscura_form", "x"}}); }, out,
+                     "obscura_form");
   EXPECT_EQ(dir_entries(), std::vector<std::string>{"blocker"});
 }
 

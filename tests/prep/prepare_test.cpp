@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cstring>
 #include <fstream>
 
 #include <nlohmann/json.hpp>
@@ -16,6 +18,8 @@
 #include "obscura/optics/material.h"
 #include "obscura/prep/suggested_lifecycle.h"
 #include "obscura/prep/voxelise.h"
+#include "obscura/render/renderer.h"
+#include "obscura/scene/scene.h"
 #include "support/cli_runner.h"
 #include "support/temp_dir_test.h"
 
@@ -109,6 +113,70 @@ TEST_F(PrepareTest, TheEightGrenadeExampleCarriesItsMassIntoTheKeyframes) {
   EXPECT_GT(t_max, 300.0f);
 }
 
+// The compact species form (output_form "species") stores concentration and
+// temperature; read back, its keyframes are the spectral form's bit for bit,
+// and so is a render of the scene through them.
+TEST_F(PrepareTest, SpeciesFormReadsAndRendersExactlyAsTheSpectralForm) {
+  nlohmann::json doc = example();
+  doc["times_s"] = {{"start", 0}, {"end", 10}, {"step", 2}};
+  const PrepareReport spectral = prepare_cloud(write(doc, "spectral.json"), dir_ / "spectral");
+  doc["output_form"] = "species";
+  const PrepareReport species = prepare_cloud(write(doc, "species.json"), dir_ / "species");
+  EXPECT_EQ(spectral.output_form, "spectral");
+  EXPECT_EQ(species.output_form, "species");
+  ASSERT_EQ(species.keyframes.size(), 6u);
+  ASSERT_EQ(spectral.keyframes.size(), 6u);
+  for (std::size_t i = 0; i < species.keyframes.size(); ++i) {
+    const KeyframeInfo info = inspect_cloud_keyframe(species.keyframes[i]);
+    EXPECT_EQ(info.form, "species");
+    ASSERT_EQ(info.species.size(), 1u);
+    EXPECT_EQ(info.species[0].optics.name, "phosphorus_smoke");
+    EXPECT_EQ(inspect_cloud_keyframe(spectral.keyframes[i]).form, "spectral");
+    const CloudKeyframe a = read_cloud_keyframe(spectral.keyframes[i]);
+    const CloudKeyframe b = read_cloud_keyframe(species.keyframes[i]);
+    EXPECT_EQ(a.time_s, b.time_s);
+    ASSERT_EQ(a.grid->dims(), b.grid->dims());
+    EXPECT_EQ(a.grid->wavelengths_um(), b.grid->wavelengths_um());
+    EXPECT_EQ(a.grid->placement().origin_m, b.grid->placement().origin_m);
+    EXPECT_EQ(a.grid->placement().voxel_size_m, b.grid->placement().voxel_size_m);
+    for (int c = 0; c < a.grid->channel_count(); ++c)
+      EXPECT_EQ(std::memcmp(a.grid->channel(c), b.grid->channel(c), a.grid->dims().count() * sizeof(float)), 0)
+          << "keyframe " << i << " " << a.grid->channel_name(c);
+  }
+  // Two floats per voxel instead of 13: the files are smaller.
+  EXPECT_LT(species.bytes_written, spectral.bytes_written);
+
+  // The example's scene through either folder, small and without its region.
+  std::ifstream in(kExample.parent_path() / "scene.json");
+  nlohmann::json scene_doc = nlohmann::json::parse(in);
+  scene_doc.erase("regions");
+  auto& sensor = scene_doc["sensors"][0];
+  sensor["width"] = 48;
+  sensor["height"] = 24;
+  sensor["bands"] = {"visible", "lwir"};
+  std::vector<SensorImage> images;
+  for (const std::string folder : {"spectral", "species"}) {
+    scene_doc["clouds"][0]["manifest"] = folder + "/cloud.json";
+    Scene scene = parse_scene(scene_doc, dir_ / "scene.json");
+    for (const double t : {1.0, 7.0}) {
+      stage_scene(scene, t);
+      images.push_back(render_sensor(scene, scene.sensors[0], RenderOptions{.threads = 2}));
+    }
+  }
+  ASSERT_EQ(images.size(), 4u);
+  for (std::size_t k = 0; k < 2; ++k) {
+    const SensorImage &a = images[k], &b = images[k + 2];
+    ASSERT_EQ(a.bands.size(), b.bands.size());
+    for (std::size_t band = 0; band < a.bands.size(); ++band) {
+      EXPECT_EQ(a.bands[band].radiance, b.bands[band].radiance) << k << " " << band;
+      EXPECT_EQ(a.bands[band].transmittance, b.bands[band].transmittance) << k << " " << band;
+    }
+    // The screen is in view: not a comparison of two empty skies.
+    const auto& t = a.bands[0].transmittance;
+    EXPECT_LT(*std::min_element(t.begin(), t.end()), 0.01f) << k;
+  }
+}
+
 TEST_F(PrepareTest, CfdFramesFromVtk) {
   write_vtk_frame(dir_ / "f0.vtk", small_frame(0, 1.0f), VtkEncoding::kBinary);
   write_vtk_frame(dir_ / "f1.vtk", small_frame(4, 2.0f), VtkEncoding::kAscii);
@@ -148,6 +216,9 @@ TEST_F(PrepareTest, BadInputNamesItsFieldAndLeavesNothingBehind) {
   doc = example();
   doc["wavelengths_um"] = {10.0, 4.0};
   EXPECT_NE(error_of(doc).find("/wavelengths_um/1"), std::string::npos);
+  doc = example();
+  doc["output_form"] = "compact";
+  EXPECT_NE(error_of(doc).find("/output_form"), std::string::npos) << error_of(doc);
   doc = example();
   doc["colour"] = "grey";
   EXPECT_NE(error_of(doc).find("/colour"), std::string::npos);

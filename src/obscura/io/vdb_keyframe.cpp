@@ -9,14 +9,18 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <functional>
 #include <mutex>
 #include <optional>
 #include <set>
 #include <stdexcept>
 #include <system_error>
 
+#include <nlohmann/json.hpp>
+
 #include "obscura/core/error.h"
 #include "obscura/io/atomic_file.h"
+#include "obscura/io/json_reader.h"
 
 namespace obscura {
 namespace {
@@ -24,7 +28,10 @@ namespace {
 using DenseXYZ = openvdb::tools::Dense<float, openvdb::tools::LayoutXYZ>;
 
 constexpr const char* kFormatName = "cloud-keyframe";
+constexpr const char* kFormSpectral = "spectral";
+constexpr const char* kFormSpecies = "species";
 constexpr const char* kCoefficientUnits = "1/m";
+constexpr const char* kConcentrationUnits = "g/m3";
 constexpr const char* kTemperatureUnits = "K";
 constexpr const char* kTransformGrid = "temperature";
 
@@ -33,12 +40,15 @@ constexpr const char* kTransformGrid = "temperature";
 // (or compose it from Euler angles) leave errors of ~1e-7, which are harmless.
 constexpr double kTransformTolerance = 1e-6;
 
-// File-level metadata keys this format owns; extra_metadata must not use them.
+// File-level metadata keys this format owns (either form); extra_metadata
+// must not use them.
 const std::set<std::string>& reserved_keys() {
   static const std::set<std::string> keys = {
-      "obscura_format",    "obscura_format_version", "time_s",
-      "wavelengths_um",    "spectral_count",         "dims",
-      "coefficient_units", "temperature_units",      "placement"};
+      "obscura_format",    "obscura_format_version", "obscura_form",
+      "time_s",            "wavelengths_um",         "spectral_count",
+      "dims",              "coefficient_units",      "temperature_units",
+      "placement",         "species_count",          "species_optics",
+      "concentration_units"};
   return keys;
 }
 
@@ -49,31 +59,40 @@ void ensure_openvdb_initialized() {
   std::call_once(once, [] { openvdb::initialize(); });
 }
 
-enum class ChannelKind { kSigmaA, kSigmaS, kG, kTemperature };
+// One float grid of a keyframe file, as written and as expected on reading
+// (docs/formats.md): its name, units and class, and the per-grid metadata
+// that ties it to the file.
+struct GridSpec {
+  std::string name;
+  std::string units;
+  bool fog_volume = false;   // grid class: fog volume (densities) or unknown
+  int spectral_index = -1;   // spectral grids: k, with wavelength_um
+  double wavelength_um = 0.0;
+  std::string species;       // concentration grids: the species' name
+};
 
-ChannelKind channel_kind(const VoxelGrid& grid, int c) {
-  const int n = grid.spectral_count();
-  if (c < n) return ChannelKind::kSigmaA;
-  if (c < 2 * n) return ChannelKind::kSigmaS;
-  if (c < 3 * n) return ChannelKind::kG;
-  return ChannelKind::kTemperature;
+// The grids of the spectral form, in VoxelGrid channel order (σa, σs, g per
+// wavelength, then temperature); names as VoxelGrid::channel_name.
+std::vector<GridSpec> spectral_layout(const std::vector<double>& wavelengths_um) {
+  const int n = static_cast<int>(wavelengths_um.size());
+  std::vector<GridSpec> layout;
+  for (const auto& [prefix, units, fog] : {std::tuple{"sigma_a_", kCoefficientUnits, true},
+                                           std::tuple{"sigma_s_", kCoefficientUnits, true},
+                                           std::tuple{"g_", "1", false}})
+    for (int k = 0; k < n; ++k)
+      layout.push_back({fmt::format("{}{:03d}", prefix, k), units, fog, k, wavelengths_um[k], ""});
+  layout.push_back({kTransformGrid, kTemperatureUnits, false, -1, 0.0, ""});
+  return layout;
 }
 
-const char* channel_units(ChannelKind kind) {
-  switch (kind) {
-    case ChannelKind::kSigmaA:
-    case ChannelKind::kSigmaS:
-      return kCoefficientUnits;
-    case ChannelKind::kG:
-      return "1";
-    case ChannelKind::kTemperature:
-      return kTemperatureUnits;
-  }
-  return "";
-}
-
-int channel_spectral_index(const VoxelGrid& grid, int c) {
-  return channel_kind(grid, c) == ChannelKind::kTemperature ? -1 : c % grid.spectral_count();
+// The grids of the species form: one concentration per species, then temperature.
+std::vector<GridSpec> species_layout(const std::vector<SpeciesOptics>& species) {
+  std::vector<GridSpec> layout;
+  for (std::size_t s = 0; s < species.size(); ++s)
+    layout.push_back({species_concentration_name(static_cast<int>(s)), kConcentrationUnits, true,
+                      -1, 0.0, species[s].name});
+  layout.push_back({kTransformGrid, kTemperatureUnits, false, -1, 0.0, ""});
+  return layout;
 }
 
 openvdb::CoordBBox dense_bbox(const GridDims& d) {
@@ -291,17 +310,27 @@ class MetaReader {
 
 // If a grid carries one of our per-grid metadata fields, it must agree with
 // the file; grids from other tools may omit them.
-void check_grid_metadata(const openvdb::GridBase& g, const VoxelGrid& grid, int c,
-                         const std::string& file) {
-  const std::string name = grid.channel_name(c);
+void check_grid_metadata(const openvdb::GridBase& g, const GridSpec& spec, const std::string& file) {
+  const std::string& name = spec.name;
   if (auto u = g.getMetadata<openvdb::StringMetadata>("units")) {
-    const char* want = channel_units(channel_kind(grid, c));
-    if (u->value() != want)
+    if (u->value() != spec.units)
       throw InputError(
           file, name + ".units",
-          fmt::format("units '{}' but this channel must be in '{}'", u->value(), want));
+          fmt::format("units '{}' but this grid must be in '{}'", u->value(), spec.units));
   }
-  const int k = channel_spectral_index(grid, c);
+  if (!spec.species.empty()) {
+    if (auto m = g[std::string("species")]) {
+      auto s = dynamic_cast<const openvdb::StringMetadata*>(m.get());
+      if (!s)
+        throw InputError(file, name + ".species",
+                         fmt::format("grid metadata has type {}, expected string", m->typeName()));
+      if (s->value() != spec.species)
+        throw InputError(file, name + ".species",
+                         fmt::format("species '{}' differs from species_optics, which names it '{}'",
+                                     s->value(), spec.species));
+    }
+  }
+  const int k = spec.spectral_index;
   if (k < 0) return;
   if (auto m = g[std::string("spectral_index")]) {
     long long idx = -1;
@@ -321,58 +350,44 @@ void check_grid_metadata(const openvdb::GridBase& g, const VoxelGrid& grid, int 
     if (!d)
       throw InputError(file, name + ".wavelength_um",
                        fmt::format("grid metadata has type {}, expected double", m->typeName()));
-    if (d->value() != grid.wavelengths_um()[k])
+    if (d->value() != spec.wavelength_um)
       throw InputError(file, name + ".wavelength_um",
                        fmt::format("wavelength {} µm differs from wavelengths_um[{}] = {} µm",
-                                   d->value(), k, grid.wavelengths_um()[k]));
+                                   d->value(), k, spec.wavelength_um));
   }
 }
 
-// Grid names of the form <prefix>NNN with NNN >= spectral_count mean the
-// spectral_count metadata and the grids disagree.
-void check_no_extra_spectral_grids(openvdb::io::File& f, int n, const std::string& file) {
+// Refuses a grid named <prefix>NNN (one of `prefixes`) with NNN >= n, e.g.
+// sigma_a_005 with spectral_count 5; `problem(NNN)` says why it makes the file
+// inconsistent.
+void check_no_extra_indexed_grids(openvdb::io::File& f, std::initializer_list<const char*> prefixes,
+                                  int n, const std::string& file,
+                                  const std::function<std::string(int)>& problem) {
   for (auto it = f.beginName(); it != f.endName(); ++it) {
     const std::string name = *it;
-    for (const char* prefix : {"sigma_a_", "sigma_s_", "g_"}) {
+    for (const char* prefix : prefixes) {
       const std::string p(prefix);
       if (name.size() != p.size() + 3 || name.compare(0, p.size(), p) != 0) continue;
       int idx = 0;
       const auto [end, ec] =
           std::from_chars(name.data() + p.size(), name.data() + name.size(), idx);
       if (ec == std::errc() && end == name.data() + name.size() && idx >= n)
-        throw InputError(file, name,
-                         fmt::format("grid index {} is beyond spectral_count {}", idx, n));
+        throw InputError(file, name, problem(idx));
     }
   }
 }
 
-struct ReadResult {
-  CloudKeyframe keyframe;
-  openvdb::MetaMap::Ptr file_metadata;
+// The metadata both forms share, read and checked.
+struct CommonHeader {
+  std::string form;
+  double time_s = 0.0;
+  std::vector<double> wavelengths_um;
+  GridDims dims;
 };
 
-ReadResult read_keyframe(const std::filesystem::path& path) {
-  ensure_openvdb_initialized();
-  const std::string file = path.string();
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec))
-    throw InputError(file, "",
-                     std::filesystem::exists(path, ec) ? "is not a regular file" : "no such file");
-
-  openvdb::io::File f(file);
-  try {
-    // No delayed loading: readGrid below then reads the voxel data at once, so
-    // a truncated file fails there, where the error can name the grid, and not
-    // later inside copyToDense's worker threads.
-    f.open(/*delayLoad=*/false);
-  } catch (const openvdb::Exception& e) {
-    throw InputError(file, "", fmt::format("not a readable OpenVDB file ({})", e.what()));
-  }
-
-  ReadResult result;
-  result.file_metadata = f.getMetadata();
-  const MetaReader meta(*result.file_metadata, file);
-
+CommonHeader read_common_header(const MetaReader& meta, const openvdb::MetaMap& map,
+                                const std::string& file) {
+  CommonHeader h;
   const std::string format = meta.get_string("obscura_format");
   if (format != kFormatName)
     throw InputError(file, "obscura_format",
@@ -384,118 +399,280 @@ ReadResult read_keyframe(const std::filesystem::path& path) {
                                  kCloudKeyframeFormatVersion));
   if (version < 1)
     throw InputError(file, "obscura_format_version", fmt::format("invalid version {}", version));
-  if (meta.get_string("coefficient_units") != kCoefficientUnits)
-    throw InputError(file, "coefficient_units",
-                     fmt::format("is '{}', expected '{}'", meta.get_string("coefficient_units"),
-                                 kCoefficientUnits));
+  // Files without obscura_form (other tools, older obscura) are spectral.
+  h.form = map[std::string("obscura_form")] ? meta.get_string("obscura_form") : kFormSpectral;
+  if (h.form != kFormSpectral && h.form != kFormSpecies)
+    throw InputError(file, "obscura_form",
+                     fmt::format("is '{}', expected '{}' or '{}'", h.form, kFormSpectral,
+                                 kFormSpecies));
   if (meta.get_string("temperature_units") != kTemperatureUnits)
     throw InputError(file, "temperature_units",
                      fmt::format("is '{}', expected '{}'", meta.get_string("temperature_units"),
                                  kTemperatureUnits));
 
-  const double time_s = meta.get_double("time_s");
-  if (!(std::isfinite(time_s) && time_s >= 0.0))
+  h.time_s = meta.get_double("time_s");
+  if (!(std::isfinite(h.time_s) && h.time_s >= 0.0))
     throw InputError(
         file, "time_s",
-        fmt::format("time {} s must be finite and >= 0 (seconds after activation)", time_s));
+        fmt::format("time {} s must be finite and >= 0 (seconds after activation)", h.time_s));
 
   const long long spectral_count = meta.get_int("spectral_count");
   if (spectral_count <= 0 || spectral_count > 999)  // grid names carry 3 digits
     throw InputError(file, "spectral_count",
                      fmt::format("{} must be between 1 and 999", spectral_count));
-  const int n = static_cast<int>(spectral_count);
-  std::vector<double> wavelengths = parse_wavelengths(meta.get_string("wavelengths_um"), file);
-  if (static_cast<long long>(wavelengths.size()) != spectral_count)
+  h.wavelengths_um = parse_wavelengths(meta.get_string("wavelengths_um"), file);
+  if (static_cast<long long>(h.wavelengths_um.size()) != spectral_count)
     throw InputError(file, "wavelengths_um",
                      fmt::format("lists {} wavelengths but spectral_count is {}",
-                                 wavelengths.size(), spectral_count));
+                                 h.wavelengths_um.size(), spectral_count));
 
   const openvdb::Vec3i d = meta.get_vec3i("dims");
-  const GridDims dims{d.x(), d.y(), d.z()};
-  // Before reading any voxel data: refuse dims that overflow or exceed memory.
-  VoxelGrid::checked_storage_bytes(dims, n, file);
+  h.dims = GridDims{d.x(), d.y(), d.z()};
+  return h;
+}
 
-  // Names, types and transforms first, from the grid headers only.
-  check_no_extra_spectral_grids(f, n, file);
-  // Same names as VoxelGrid::channel_name, needed before the grid exists.
-  std::vector<std::string> names;
-  for (int c = 0; c < 3 * n + 1; ++c)
-    names.push_back(c < n       ? fmt::format("sigma_a_{:03d}", c)
-                    : c < 2 * n ? fmt::format("sigma_s_{:03d}", c - n)
-                    : c < 3 * n ? fmt::format("g_{:03d}", c - 2 * n)
-                                : std::string("temperature"));
+void require_units(const MetaReader& meta, const std::string& key, const char* want,
+                   const std::string& file) {
+  const std::string units = meta.get_string(key);
+  if (units != want)
+    throw InputError(file, key, fmt::format("is '{}', expected '{}'", units, want));
+}
+
+// Checks the headers of `layout`'s grids (present, float grids, per-grid
+// metadata, one shared transform) without reading voxel data, and returns the
+// placement: the exact "placement" record when present and agreeing with the
+// transform, else the transform's.
+GridPlacement read_layout_placement(openvdb::io::File& f, const openvdb::MetaMap& file_metadata,
+                                    const std::vector<GridSpec>& layout, const GridDims& dims,
+                                    const std::string& file) {
   std::vector<openvdb::GridBase::Ptr> headers;
-  for (const std::string& name : names) {
-    if (!f.hasGrid(name)) throw InputError(file, name, "grid is missing");
+  const openvdb::GridBase* reference = nullptr;
+  for (const GridSpec& spec : layout) {
+    if (!f.hasGrid(spec.name)) throw InputError(file, spec.name, "grid is missing");
     openvdb::GridBase::Ptr h;
     try {
-      h = f.readGridMetadata(name);
+      h = f.readGridMetadata(spec.name);
     } catch (const openvdb::Exception& e) {
-      throw InputError(file, name, fmt::format("cannot read grid header ({})", e.what()));
+      throw InputError(file, spec.name, fmt::format("cannot read grid header ({})", e.what()));
     }
     if (!h->isType<openvdb::FloatGrid>())
-      throw InputError(file, name,
+      throw InputError(file, spec.name,
                        fmt::format("grid has type {}, expected a float grid", h->type()));
+    if (spec.name == kTransformGrid) reference = h.get();
     headers.push_back(h);
   }
-  const openvdb::GridBase& reference = *headers.back();  // temperature
+  if (!reference) throw std::logic_error("vdb_keyframe: a layout without temperature");
   const GridPlacement placement =
-      transform_to_placement(reference.constTransform(), file, kTransformGrid);
-  for (std::size_t c = 0; c + 1 < headers.size(); ++c)
-    if (!(headers[c]->constTransform() == reference.constTransform()))
-      throw InputError(file, names[c],
+      transform_to_placement(reference->constTransform(), file, kTransformGrid);
+  for (std::size_t c = 0; c < headers.size(); ++c)
+    if (!(headers[c]->constTransform() == reference->constTransform()))
+      throw InputError(file, layout[c].name,
                        "grid transform differs from the 'temperature' grid's; all grids of a "
                        "keyframe must share one placement");
+  for (std::size_t c = 0; c < headers.size(); ++c) check_grid_metadata(*headers[c], layout[c], file);
 
   // Prefer the exact placement written beside the transform, when it agrees with it.
-  GridPlacement exact_placement = placement;
-  if (auto m = result.file_metadata->getMetadata<openvdb::StringMetadata>("placement")) {
+  if (auto m = file_metadata.getMetadata<openvdb::StringMetadata>("placement")) {
     const auto parsed = parse_placement(m->value());
     if (!parsed)
       throw InputError(file, "placement", fmt::format("'{}' is not a placement record", m->value()));
     if (!placements_agree(*parsed, placement, dims, 1e-6))
       throw InputError(file, "placement",
                        "disagrees with the grids' transform (the file was edited inconsistently)");
-    exact_placement = *parsed;
+    return *parsed;
   }
-  auto grid = std::make_shared<VoxelGrid>(dims, exact_placement, std::move(wavelengths), file);
-  for (int c = 0; c < grid->channel_count(); ++c)
-    if (names[c] != grid->channel_name(c))  // the list above must mirror channel_name
-      throw std::logic_error("vdb_keyframe: channel name mismatch for " + names[c]);
-  for (int c = 0; c < grid->channel_count(); ++c) check_grid_metadata(*headers[c], *grid, c, file);
+  return placement;
+}
 
-  const openvdb::CoordBBox bounds = dense_bbox(dims);
-  for (int c = 0; c < grid->channel_count(); ++c) {
-    const std::string& name = names[c];
-    openvdb::FloatGrid::Ptr g;
-    try {
-      g = openvdb::gridPtrCast<openvdb::FloatGrid>(f.readGrid(name));
-    } catch (const openvdb::Exception& e) {
-      throw InputError(file, name, fmt::format("cannot read grid ({})", e.what()));
-    }
-    const openvdb::CoordBBox active = g->evalActiveVoxelBoundingBox();
-    if (!active.empty() && !bounds.isInside(active))
-      throw InputError(
-          file, name,
-          fmt::format("active voxels span [{},{},{}]..[{},{},{}], outside the grid "
-                      "dims [0,0,0]..[{},{},{}]",
-                      active.min().x(), active.min().y(), active.min().z(), active.max().x(),
-                      active.max().y(), active.max().z(), dims.nx - 1, dims.ny - 1, dims.nz - 1));
-    DenseXYZ dense(bounds, grid->channel(c));
-    openvdb::tools::copyToDense(*g, dense);
+// Reads grid `name` into `out` (dims.count() floats, x fastest): voxels not
+// stored take the background. Active voxels outside the dims are an error.
+void read_dense_grid(openvdb::io::File& f, const std::string& name, const GridDims& dims,
+                     float* out, const std::string& file) {
+  openvdb::FloatGrid::Ptr g;
+  try {
+    g = openvdb::gridPtrCast<openvdb::FloatGrid>(f.readGrid(name));
+  } catch (const openvdb::Exception& e) {
+    throw InputError(file, name, fmt::format("cannot read grid ({})", e.what()));
   }
-  f.close();
+  const openvdb::CoordBBox bounds = dense_bbox(dims);
+  const openvdb::CoordBBox active = g->evalActiveVoxelBoundingBox();
+  if (!active.empty() && !bounds.isInside(active))
+    throw InputError(
+        file, name,
+        fmt::format("active voxels span [{},{},{}]..[{},{},{}], outside the grid "
+                    "dims [0,0,0]..[{},{},{}]",
+                    active.min().x(), active.min().y(), active.min().z(), active.max().x(),
+                    active.max().y(), active.max().z(), dims.nx - 1, dims.ny - 1, dims.nz - 1));
+  DenseXYZ dense(bounds, out);
+  openvdb::tools::copyToDense(*g, dense);
+}
+
+std::shared_ptr<VoxelGrid> read_spectral_grids(openvdb::io::File& f, const MetaReader& meta,
+                                               const openvdb::MetaMap& file_metadata,
+                                               CommonHeader& h, const std::string& file) {
+  require_units(meta, "coefficient_units", kCoefficientUnits, file);
+  const int n = static_cast<int>(h.wavelengths_um.size());
+  // Before reading any voxel data: refuse dims that overflow or exceed memory.
+  VoxelGrid::checked_storage_bytes(h.dims, n, file);
+  check_no_extra_indexed_grids(f, {"sigma_a_", "sigma_s_", "g_"}, n, file, [&](int idx) {
+    return fmt::format("grid index {} is beyond spectral_count {}", idx, n);
+  });
+  const std::vector<GridSpec> layout = spectral_layout(h.wavelengths_um);
+  const GridPlacement placement = read_layout_placement(f, file_metadata, layout, h.dims, file);
+  auto grid = std::make_shared<VoxelGrid>(h.dims, placement, std::move(h.wavelengths_um), file);
+  for (int c = 0; c < grid->channel_count(); ++c) {
+    if (layout[c].name != grid->channel_name(c))  // the layout must mirror channel_name
+      throw std::logic_error("vdb_keyframe: channel name mismatch for " + layout[c].name);
+    read_dense_grid(f, layout[c].name, h.dims, grid->channel(c), file);
+  }
   grid->validate(file);
-  result.keyframe = CloudKeyframe{std::move(grid), time_s};
+  return grid;
+}
+
+// The "species_optics" metadata: a JSON array of {name, wavelengths_um,
+// mass_absorption_m2_g, mass_scattering_m2_g, asymmetry}, one per species,
+// each at exactly the file's wavelengths.
+std::vector<SpeciesOptics> parse_species_optics(const std::string& text, std::size_t count,
+                                                const std::vector<double>& wavelengths_um,
+                                                const std::string& file) {
+  nlohmann::json doc;
+  try {
+    doc = nlohmann::json::parse(text);
+  } catch (const nlohmann::json::parse_error& e) {
+    throw InputError(file, "species_optics", fmt::format("is not valid JSON ({})", e.what()));
+  }
+  if (!doc.is_array())
+    throw InputError(file, "species_optics", "must be a JSON array with one object per species");
+  if (doc.size() != count)
+    throw InputError(file, "species_optics",
+                     fmt::format("lists {} species but species_count is {}", doc.size(), count));
+  std::vector<SpeciesOptics> species;
+  for (std::size_t s = 0; s < count; ++s) {
+    const std::string field = fmt::format("species_optics/{}", s);
+    JsonObject o(doc[s], file, field);
+    SpeciesOptics optics;
+    optics.name = o.string("name");
+    optics.wavelengths_um = o.numbers("wavelengths_um");
+    optics.mass_absorption_m2_g = o.numbers("mass_absorption_m2_g");
+    optics.mass_scattering_m2_g = o.numbers("mass_scattering_m2_g");
+    optics.asymmetry = o.numbers("asymmetry");
+    o.finish();
+    check_species_optics(optics, wavelengths_um, file, field);
+    species.push_back(std::move(optics));
+  }
+  return species;
+}
+
+std::string format_species_optics(const std::vector<SpeciesOptics>& species) {
+  nlohmann::json doc = nlohmann::json::array();
+  // nlohmann writes the shortest decimal that reads back to the same double.
+  for (const SpeciesOptics& o : species)
+    doc.push_back({{"name", o.name},
+                   {"wavelengths_um", o.wavelengths_um},
+                   {"mass_absorption_m2_g", o.mass_absorption_m2_g},
+                   {"mass_scattering_m2_g", o.mass_scattering_m2_g},
+                   {"asymmetry", o.asymmetry}});
+  return doc.dump();
+}
+
+SpeciesCloud read_species_grids(openvdb::io::File& f, const MetaReader& meta,
+                                const openvdb::MetaMap& file_metadata, CommonHeader& h,
+                                const std::string& file) {
+  require_units(meta, "concentration_units", kConcentrationUnits, file);
+  const long long species_count = meta.get_int("species_count");
+  if (species_count <= 0 || species_count > 999)  // grid names carry 3 digits
+    throw InputError(file, "species_count",
+                     fmt::format("{} must be between 1 and 999", species_count));
+  const std::size_t ns = static_cast<std::size_t>(species_count);
+  SpeciesCloud cloud;
+  cloud.species =
+      parse_species_optics(meta.get_string("species_optics"), ns, h.wavelengths_um, file);
+
+  // Before reading any voxel data: the expanded grid and, while it is being
+  // expanded, the compact arrays must fit in memory.
+  const std::uint64_t expanded = VoxelGrid::checked_storage_bytes(
+      h.dims, static_cast<int>(h.wavelengths_um.size()), file);
+  std::uint64_t compact = 0;
+  if (__builtin_mul_overflow(static_cast<std::uint64_t>(h.dims.count()),
+                             static_cast<std::uint64_t>((ns + 1) * sizeof(float)), &compact) ||
+      expanded + compact < expanded || expanded + compact > available_memory_bytes())
+    throw InputError(file, "dims",
+                     fmt::format("grid {}x{}x{} with {} species and {} wavelengths needs {:.3g} "
+                                 "GiB but only {:.3g} GiB of memory is available",
+                                 h.dims.nx, h.dims.ny, h.dims.nz, ns, h.wavelengths_um.size(),
+                                 (static_cast<double>(expanded) + static_cast<double>(compact)) /
+                                     1073741824.0,
+                                 available_memory_bytes() / 1073741824.0));
+
+  check_no_extra_indexed_grids(f, {"concentration_"}, static_cast<int>(ns), file, [&](int idx) {
+    return fmt::format("grid index {} is beyond species_count {}", idx, ns);
+  });
+  check_no_extra_indexed_grids(f, {"sigma_a_", "sigma_s_", "g_"}, 0, file, [](int) {
+    return std::string("spectral grid in a species-form keyframe (obscura_form 'species')");
+  });
+  const std::vector<GridSpec> layout = species_layout(cloud.species);
+  cloud.placement = read_layout_placement(f, file_metadata, layout, h.dims, file);
+  cloud.dims = h.dims;
+  cloud.wavelengths_um = std::move(h.wavelengths_um);
+  const std::size_t count = h.dims.count();
+  cloud.concentration_g_m3.resize(ns);
+  for (std::size_t s = 0; s < ns; ++s) {
+    cloud.concentration_g_m3[s].resize(count);
+    read_dense_grid(f, layout[s].name, cloud.dims, cloud.concentration_g_m3[s].data(), file);
+  }
+  cloud.temperature_k.resize(count);
+  read_dense_grid(f, kTransformGrid, cloud.dims, cloud.temperature_k.data(), file);
+  validate_species_cloud(cloud, file);
+  return cloud;
+}
+
+struct ReadResult {
+  CloudKeyframe keyframe;
+  openvdb::MetaMap::Ptr file_metadata;
+  std::string form;
+  std::optional<SpeciesCloud> species;  // species form, when asked to keep it
+};
+
+ReadResult read_keyframe(const std::filesystem::path& path, bool keep_species) {
+  ensure_openvdb_initialized();
+  const std::string file = path.string();
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec))
+    throw InputError(file, "",
+                     std::filesystem::exists(path, ec) ? "is not a regular file" : "no such file");
+
+  openvdb::io::File f(file);
+  try {
+    // No delayed loading: readGrid then reads the voxel data at once, so a
+    // truncated file fails there, where the error can name the grid, and not
+    // later inside copyToDense's worker threads.
+    f.open(/*delayLoad=*/false);
+  } catch (const openvdb::Exception& e) {
+    throw InputError(file, "", fmt::format("not a readable OpenVDB file ({})", e.what()));
+  }
+
+  ReadResult result;
+  result.file_metadata = f.getMetadata();
+  const MetaReader meta(*result.file_metadata, file);
+  CommonHeader h = read_common_header(meta, *result.file_metadata, file);
+  result.form = h.form;
+  result.keyframe.time_s = h.time_s;
+  if (h.form == kFormSpecies) {
+    SpeciesCloud cloud = read_species_grids(f, meta, *result.file_metadata, h, file);
+    f.close();
+    result.keyframe.grid = std::make_shared<VoxelGrid>(expand_species(cloud, file));
+    if (keep_species) result.species = std::move(cloud);
+  } else {
+    result.keyframe.grid = read_spectral_grids(f, meta, *result.file_metadata, h, file);
+    f.close();
+  }
   return result;
 }
 
-}  // namespace
+// --- writing
 
-void write_cloud_keyframe(const std::filesystem::path& path, const VoxelGrid& grid, double time_s,
-                          const std::map<std::string, std::string>& extra_metadata) {
-  ensure_openvdb_initialized();
-  const std::string file = path.string();
+void check_time_and_metadata(const std::string& file, double time_s,
+                             const std::map<std::string, std::string>& extra_metadata) {
   if (!(std::isfinite(time_s) && time_s >= 0.0))
     throw InputError(
         file, "time_s",
@@ -505,71 +682,131 @@ void write_cloud_keyframe(const std::filesystem::path& path, const VoxelGrid& gr
     if (reserved_keys().count(key))
       throw InputError(file, key, "is a reserved cloud-keyframe metadata name");
   }
-  grid.validate(file);  // an invalid grid would only be refused by the reader
+}
 
+// The file metadata both forms carry.
+openvdb::MetaMap common_metadata(const char* form, double time_s,
+                                 const std::vector<double>& wavelengths_um, const GridDims& d,
+                                 const GridPlacement& placement,
+                                 const std::map<std::string, std::string>& extra_metadata) {
   openvdb::MetaMap meta;
   meta.insertMeta("obscura_format", openvdb::StringMetadata(kFormatName));
   meta.insertMeta("obscura_format_version", openvdb::Int32Metadata(kCloudKeyframeFormatVersion));
+  meta.insertMeta("obscura_form", openvdb::StringMetadata(form));
   meta.insertMeta("time_s", openvdb::DoubleMetadata(time_s));
-  meta.insertMeta("wavelengths_um",
-                  openvdb::StringMetadata(format_wavelengths(grid.wavelengths_um())));
-  meta.insertMeta("spectral_count", openvdb::Int32Metadata(grid.spectral_count()));
-  const GridDims& d = grid.dims();
+  meta.insertMeta("wavelengths_um", openvdb::StringMetadata(format_wavelengths(wavelengths_um)));
+  meta.insertMeta("spectral_count",
+                  openvdb::Int32Metadata(static_cast<int>(wavelengths_um.size())));
   meta.insertMeta("dims", openvdb::Vec3IMetadata(openvdb::Vec3i(d.nx, d.ny, d.nz)));
-  meta.insertMeta("coefficient_units", openvdb::StringMetadata(kCoefficientUnits));
   meta.insertMeta("temperature_units", openvdb::StringMetadata(kTemperatureUnits));
-  meta.insertMeta("placement", openvdb::StringMetadata(format_placement(grid.placement())));
+  meta.insertMeta("placement", openvdb::StringMetadata(format_placement(placement)));
   for (const auto& [key, value] : extra_metadata)
     meta.insertMeta(key, openvdb::StringMetadata(value));
+  return meta;
+}
 
-  const openvdb::math::Transform::Ptr xf = placement_to_transform(grid.placement());
-  const openvdb::CoordBBox bounds = dense_bbox(d);
-  openvdb::GridPtrVec grids;
-  for (int c = 0; c < grid.channel_count(); ++c) {
-    const ChannelKind kind = channel_kind(grid, c);
-    auto g = openvdb::FloatGrid::create(/*background=*/0.0f);
-    g->setName(grid.channel_name(c));
-    g->setTransform(xf->copy());
-    g->setGridClass(kind == ChannelKind::kSigmaA || kind == ChannelKind::kSigmaS
-                        ? openvdb::GRID_FOG_VOLUME
-                        : openvdb::GRID_UNKNOWN);
-    g->insertMeta("units", openvdb::StringMetadata(channel_units(kind)));
-    const int k = channel_spectral_index(grid, c);
-    if (k >= 0) {
-      g->insertMeta("spectral_index", openvdb::Int32Metadata(k));
-      g->insertMeta("wavelength_um", openvdb::DoubleMetadata(grid.wavelengths_um()[k]));
-    }
-    // Dense only reads through this pointer here (copyFromDense takes it const);
-    // the const_cast is for Dense's constructor, which has no const overload.
-    const DenseXYZ dense(bounds, const_cast<float*>(grid.channel(c)));
-    // Tolerance 0: only exact zeros become inactive background, so every other
-    // value is stored bit for bit.
-    openvdb::tools::copyFromDense(dense, *g, 0.0f);
-    grids.push_back(g);
+// One float grid of `spec` holding `values` (dims.count() floats, x fastest).
+openvdb::FloatGrid::Ptr make_float_grid(const GridSpec& spec, const float* values,
+                                        const GridDims& d, const openvdb::math::Transform& xf) {
+  auto g = openvdb::FloatGrid::create(/*background=*/0.0f);
+  g->setName(spec.name);
+  g->setTransform(xf.copy());
+  g->setGridClass(spec.fog_volume ? openvdb::GRID_FOG_VOLUME : openvdb::GRID_UNKNOWN);
+  g->insertMeta("units", openvdb::StringMetadata(spec.units));
+  if (spec.spectral_index >= 0) {
+    g->insertMeta("spectral_index", openvdb::Int32Metadata(spec.spectral_index));
+    g->insertMeta("wavelength_um", openvdb::DoubleMetadata(spec.wavelength_um));
   }
+  if (!spec.species.empty()) g->insertMeta("species", openvdb::StringMetadata(spec.species));
+  // Dense only reads through this pointer here (copyFromDense takes it const);
+  // the const_cast is for Dense's constructor, which has no const overload.
+  const DenseXYZ dense(dense_bbox(d), const_cast<float*>(values));
+  // Tolerance 0: only exact zeros become inactive background, so every other
+  // value is stored bit for bit.
+  openvdb::tools::copyFromDense(dense, *g, 0.0f);
+  return g;
+}
 
+void write_keyframe_file(const std::filesystem::path& path, const openvdb::GridPtrVec& grids,
+                         const openvdb::MetaMap& meta) {
   AtomicFile out(path);
   try {
     openvdb::io::File f(out.temp_path().string());
     f.write(grids, meta);
     f.close();
   } catch (const openvdb::Exception& e) {
-    throw Error(fmt::format("cannot write cloud keyframe {}: {}", file, e.what()));
+    throw Error(fmt::format("cannot write cloud keyframe {}: {}", path.string(), e.what()));
   }
   out.commit();
 }
 
+ChannelSummary summarise(const std::string& name, const std::string& units, const float* v,
+                         std::size_t count) {
+  ChannelSummary s;
+  s.name = name;
+  s.units = units;
+  const auto [lo, hi] = std::minmax_element(v, v + count);
+  s.min = *lo;
+  s.max = *hi;
+  s.nonzero_voxels = static_cast<std::size_t>(count - std::count(v, v + count, 0.0f));
+  return s;
+}
+
+}  // namespace
+
+void write_cloud_keyframe(const std::filesystem::path& path, const VoxelGrid& grid, double time_s,
+                          const std::map<std::string, std::string>& extra_metadata) {
+  ensure_openvdb_initialized();
+  const std::string file = path.string();
+  check_time_and_metadata(file, time_s, extra_metadata);
+  grid.validate(file);  // an invalid grid would only be refused by the reader
+
+  openvdb::MetaMap meta = common_metadata(kFormSpectral, time_s, grid.wavelengths_um(),
+                                          grid.dims(), grid.placement(), extra_metadata);
+  meta.insertMeta("coefficient_units", openvdb::StringMetadata(kCoefficientUnits));
+  const openvdb::math::Transform::Ptr xf = placement_to_transform(grid.placement());
+  const std::vector<GridSpec> layout = spectral_layout(grid.wavelengths_um());
+  openvdb::GridPtrVec grids;
+  for (int c = 0; c < grid.channel_count(); ++c)
+    grids.push_back(make_float_grid(layout[c], grid.channel(c), grid.dims(), *xf));
+  write_keyframe_file(path, grids, meta);
+}
+
+void write_species_keyframe(const std::filesystem::path& path, const SpeciesCloud& cloud,
+                            double time_s,
+                            const std::map<std::string, std::string>& extra_metadata) {
+  ensure_openvdb_initialized();
+  const std::string file = path.string();
+  check_time_and_metadata(file, time_s, extra_metadata);
+  validate_species_cloud(cloud, file);  // an invalid cloud would only be refused by the reader
+
+  openvdb::MetaMap meta = common_metadata(kFormSpecies, time_s, cloud.wavelengths_um, cloud.dims,
+                                          cloud.placement, extra_metadata);
+  meta.insertMeta("concentration_units", openvdb::StringMetadata(kConcentrationUnits));
+  meta.insertMeta("species_count",
+                  openvdb::Int32Metadata(static_cast<int>(cloud.species.size())));
+  meta.insertMeta("species_optics", openvdb::StringMetadata(format_species_optics(cloud.species)));
+  const openvdb::math::Transform::Ptr xf = placement_to_transform(cloud.placement);
+  const std::vector<GridSpec> layout = species_layout(cloud.species);
+  openvdb::GridPtrVec grids;
+  for (std::size_t s = 0; s < cloud.species.size(); ++s)
+    grids.push_back(make_float_grid(layout[s], cloud.concentration_g_m3[s].data(), cloud.dims, *xf));
+  grids.push_back(make_float_grid(layout.back(), cloud.temperature_k.data(), cloud.dims, *xf));
+  write_keyframe_file(path, grids, meta);
+}
+
 CloudKeyframe read_cloud_keyframe(const std::filesystem::path& path) {
-  return read_keyframe(path).keyframe;
+  return read_keyframe(path, /*keep_species=*/false).keyframe;
 }
 
 KeyframeInfo inspect_cloud_keyframe(const std::filesystem::path& path) {
-  ReadResult r = read_keyframe(path);
+  ReadResult r = read_keyframe(path, /*keep_species=*/true);
   const VoxelGrid& grid = *r.keyframe.grid;
   KeyframeInfo info;
   info.file = path;
   std::error_code ec;
   info.file_bytes = std::filesystem::file_size(path, ec);
+  info.form = r.form;
   info.dims = grid.dims();
   info.wavelengths_um = grid.wavelengths_um();
   info.placement = grid.placement();
@@ -577,16 +814,17 @@ KeyframeInfo inspect_cloud_keyframe(const std::filesystem::path& path) {
   info.time_s = r.keyframe.time_s;
   info.memory_bytes = grid.memory_bytes();
   const std::size_t count = grid.dims().count();
-  for (int c = 0; c < grid.channel_count(); ++c) {
-    const float* v = grid.channel(c);
-    ChannelSummary s;
-    s.name = grid.channel_name(c);
-    s.units = channel_units(channel_kind(grid, c));
-    const auto [lo, hi] = std::minmax_element(v, v + count);
-    s.min = *lo;
-    s.max = *hi;
-    s.nonzero_voxels = static_cast<std::size_t>(count - std::count(v, v + count, 0.0f));
-    info.channels.push_back(std::move(s));
+  const std::vector<GridSpec> layout = spectral_layout(grid.wavelengths_um());
+  for (int c = 0; c < grid.channel_count(); ++c)
+    info.channels.push_back(summarise(layout[c].name, layout[c].units, grid.channel(c), count));
+  if (r.species) {
+    const SpeciesCloud& cloud = *r.species;
+    info.compact_bytes = cloud.memory_bytes();
+    for (std::size_t s = 0; s < cloud.species.size(); ++s)
+      info.species.push_back(
+          {cloud.species[s],
+           summarise(species_concentration_name(static_cast<int>(s)), kConcentrationUnits,
+                     cloud.concentration_g_m3[s].data(), count)});
   }
   for (auto it = r.file_metadata->beginMeta(); it != r.file_metadata->endMeta(); ++it)
     info.metadata[it->first] = it->second ? it->second->str() : std::string();

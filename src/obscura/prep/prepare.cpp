@@ -128,6 +128,13 @@ PrepareReport prepare_cloud(const std::filesystem::path& config_path, const std:
     if (!(report.wavelengths_um[i] > 0) || (i > 0 && !(report.wavelengths_um[i] > report.wavelengths_um[i - 1])))
       throw InputError(file, fmt::format("/wavelengths_um/{}", i), "must be > 0 µm and strictly increasing");
 
+  // --- Which keyframe form to write (docs/formats.md): both read to the same grids.
+  const std::string output_form = root.string_or("output_form", "spectral");
+  if (output_form != "spectral" && output_form != "species")
+    throw root.error("output_form",
+                     fmt::format("unknown form '{}' (expected spectral or species)", output_form));
+  report.output_form = output_form;
+
   // --- Concentrations over time.
   const auto t0 = Clock::now();
   const std::string source = root.string("source");
@@ -224,9 +231,13 @@ PrepareReport prepare_cloud(const std::filesystem::path& config_path, const std:
                                                   {"command_line", options.command_line}};
     for (std::size_t i = 0; i < series.frames.size(); ++i) {
       const ConcentrationFrame& frame = series.frames[i];
-      const VoxelGrid grid = voxelise(frame, optics, ambient_k, file);
       const std::string name = fmt::format("keyframe_{:04d}.vdb", i);
-      write_cloud_keyframe(temp / name, grid, frame.time_s, meta);
+      if (output_form == "species")
+        write_species_keyframe(temp / name, species_cloud(frame, optics, ambient_k, file),
+                               frame.time_s, meta);
+      else
+        write_cloud_keyframe(temp / name, voxelise(frame, optics, ambient_k, file), frame.time_s,
+                             meta);
       report.keyframes.push_back(out_dir / name);
       say(fmt::format("keyframe {} of {} at {} s", i + 1, series.frames.size(), frame.time_s));
     }

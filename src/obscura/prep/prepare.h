@@ -3,7 +3,8 @@
 // configuration (docs/preparation.md): particle concentrations over time, from
 // the built-in dispersion model or from CFD output (VTK legacy, NetCDF-CF),
 // and a material's optics (optics/material.h) become cloud keyframes (OpenVDB,
-// σa, σs, g per spectral sample and temperature) and a manifest with a
+// σa, σs, g per spectral sample and temperature, or the compact species form:
+// concentration and temperature with the optics table) and a manifest with a
 // lifecycle (docs/time-varying-clouds.md), ready for a scene's "animated"
 // cloud.
 #include <filesystem>
@@ -31,6 +32,7 @@ struct PrepareReport {
   double voxel_size_m = 0;
   std::vector<double> wavelengths_um;
   std::string material;
+  std::string output_form = "spectral";  // keyframe form: "spectral" or "species"
   LifecycleSpec lifecycle;
   bool lifecycle_suggested = true;
   double released_mass_g = 0;  // dispersion source only

@@ -5,28 +5,28 @@
 // of every voxel,
 //   σa(λ) = c · k_abs(λ),  σs(λ) = c · k_sca(λ)  (1/m),  g(λ) = g_particles(λ),
 // and the temperature is the frame's, or the ambient air's where the source
-// has none.
+// has none. The formula is expand_species's (medium/species_optics.h) for one
+// species, so a frame written in the compact species form expands on reading
+// to exactly the grid voxelise gives.
 #include <string>
-#include <vector>
 
+#include "obscura/medium/species_optics.h"
 #include "obscura/medium/voxel_grid.h"
 #include "obscura/prep/concentration_series.h"
 
 namespace obscura {
 
-// Mass optical coefficients of one particle species at the cloud's spectral
-// samples.
-struct SpeciesOptics {
-  std::string name;
-  std::vector<double> wavelengths_um;        // strictly increasing
-  std::vector<double> mass_absorption_m2_g;  // k_abs
-  std::vector<double> mass_scattering_m2_g;  // k_sca
-  std::vector<double> asymmetry;             // HG g, in (−1, 1)
-};
+// The one-species compact cloud of one frame: its concentration, its
+// temperature (or `ambient_temperature_k` everywhere where the frame has
+// none), and `optics`, whose wavelengths become the cloud's. Checks the
+// optics, the ambient temperature and the array sizes; throws InputError
+// naming `source` otherwise.
+SpeciesCloud species_cloud(const ConcentrationFrame& frame, const SpeciesOptics& optics,
+                           double ambient_temperature_k, const std::string& source);
 
-// The voxel grid of one frame. Checks the optics (sizes, finite, k ≥ 0,
-// |g| < 1) and the grid's memory before allocating; throws InputError naming
-// `source` otherwise.
+// The voxel grid of one frame: expand_species(species_cloud(...)). Checks the
+// optics (sizes, finite, k ≥ 0, |g| < 1) and the grid's memory before
+// allocating; throws InputError naming `source` otherwise.
 VoxelGrid voxelise(const ConcentrationFrame& frame, const SpeciesOptics& optics,
                    double ambient_temperature_k, const std::string& source);
 
