@@ -266,3 +266,66 @@ TEST(SceneLoader, UnreadableFileIsAnError) {
 
 }  // namespace
 }  // namespace obscura
+
+namespace obscura {
+namespace {
+
+TEST(SceneLoader, AtmosphereMetricsTargetAndEmissivityTable) {
+  auto doc = minimal_scene();
+  doc["atmosphere"] = {{"temperature", 285.0}, {"extinction_per_km", {{"mwir", 0.3}, {"*", 0.2}}}};
+  doc["metrics"] = {{"transmittance_threshold", 0.02}, {"screened_fraction", 0.8},
+                    {"background_margin_px", 5}};
+  doc["surfaces"][1]["target"] = true;
+  doc["surfaces"][0]["emissivity"] = nlohmann::json::parse("[[4, 0.9], [10, 0.95]]");
+  const Scene s = parse_scene(doc, "scene.json");
+  EXPECT_TRUE(s.atmosphere.enabled);
+  EXPECT_DOUBLE_EQ(s.atmosphere.temperature_k, 285.0);
+  EXPECT_DOUBLE_EQ(s.atmosphere.extinction_for(Band::preset("mwir")), 0.3e-3);
+  EXPECT_DOUBLE_EQ(s.atmosphere.extinction_for(Band::preset("lwir")), 0.2e-3);
+  EXPECT_DOUBLE_EQ(s.metrics.transmittance_threshold, 0.02);
+  EXPECT_DOUBLE_EQ(s.metrics.screened_fraction, 0.8);
+  EXPECT_EQ(s.metrics.background_margin_px, 5);
+  EXPECT_FALSE(s.surfaces[0]->is_target());
+  EXPECT_TRUE(s.surfaces[1]->is_target());
+  EXPECT_DOUBLE_EQ(s.surfaces[0]->material().emissivity_at(7.0), 0.925);
+  // Without "atmosphere" there is none.
+  EXPECT_FALSE(parse_scene(minimal_scene(), "scene.json").atmosphere.enabled);
+}
+
+TEST(SceneLoader, BadAtmosphereMetricsAndEmissivityTablesAreRejected) {
+  auto with = [](const char* key, nlohmann::json value) {
+    auto doc = minimal_scene();
+    doc[key] = std::move(value);
+    return load_error(doc);
+  };
+  // A band without a coefficient, naming the band and the sensor.
+  std::string m = with("atmosphere", {{"temperature", 285.0}, {"extinction_per_km", {{"mwir", 0.3}}}});
+  EXPECT_NE(m.find("/atmosphere/extinction_per_km"), std::string::npos) << m;
+  EXPECT_NE(m.find("'8:12'"), std::string::npos) << m;
+  m = with("atmosphere", {{"temperature", 285.0}, {"extinction_per_km", -1.0}});
+  EXPECT_NE(m.find("/atmosphere/extinction_per_km"), std::string::npos) << m;
+  m = with("atmosphere", {{"extinction_per_km", 0.1}});
+  EXPECT_NE(m.find("/atmosphere/temperature"), std::string::npos) << m;
+  m = with("atmosphere", {{"temperature", 285.0}, {"extinction_per_km", 0.1}, {"visibility", 3}});
+  EXPECT_NE(m.find("/atmosphere/visibility"), std::string::npos) << m;
+  m = with("metrics", {{"transmittance_threshold", 1.5}});
+  EXPECT_NE(m.find("/metrics/transmittance_threshold"), std::string::npos) << m;
+  m = with("metrics", {{"screened_fraction", 0.0}});
+  EXPECT_NE(m.find("/metrics/screened_fraction"), std::string::npos) << m;
+
+  auto table = [](const char* json) {
+    auto doc = minimal_scene();
+    doc["surfaces"][0]["emissivity"] = nlohmann::json::parse(json);
+    return load_error(doc);
+  };
+  EXPECT_NE(table("[[4, 0.9], [3, 0.95]]").find("/surfaces/0/emissivity/1"), std::string::npos);
+  EXPECT_NE(table("[[4, 1.2]]").find("/surfaces/0/emissivity/0"), std::string::npos);
+  EXPECT_NE(table("[[4]]").find("/surfaces/0/emissivity/0"), std::string::npos);
+  EXPECT_NE(table("[]").find("/surfaces/0/emissivity"), std::string::npos);
+  auto doc = minimal_scene();
+  doc["surfaces"][0]["target"] = "yes";
+  EXPECT_NE(load_error(doc).find("/surfaces/0/target"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace obscura

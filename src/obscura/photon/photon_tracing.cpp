@@ -216,7 +216,7 @@ TracedPhotons trace_photons(const Scene& scene, const SpectralNode& node, std::u
           ray = Ray{x, phase.sample(ray.direction, rng.uniform(), rng.uniform(), nullptr)};
         } else if (on_surface) {
           if (!scattered) break;  // its reflection is in the surface's own radiance
-          const double reflectance = 1.0 - scene.surfaces[hit.surface]->material().emissivity;
+          const double reflectance = scene.surfaces[hit.surface]->material().reflectance_at(node.wavelength_um);
           if (rng.uniform() >= reflectance) break;
           ray = Ray{ray.at(hit.t) + hit.normal * 1e-9,
                     local_to_world(hit.normal, sample_cosine_hemisphere(rng.uniform(), rng.uniform()))};

@@ -26,8 +26,9 @@ Vec3 sample_sun_direction(const Sun& sun, Rng& rng) {
 double surface_radiance(const Scene& scene, const SurfaceHit& hit, const Vec3& position,
                         const SpectralNode& node, Rng& rng, MediumPoint& scratch) {
   const SurfaceMaterial& m = scene.surfaces[hit.surface]->material();
-  double l = m.emissivity * node.planck(m.temperature_k);
-  const double reflectance = 1.0 - m.emissivity;
+  const double emissivity = m.emissivity_at(node.wavelength_um);
+  double l = emissivity * node.planck(m.temperature_k);
+  const double reflectance = 1.0 - emissivity;
   if (reflectance <= 0.0) return l;
   const SpectralLerp lambda = node.lerp();
   const Vec3 p = position + hit.normal * 1e-9;
@@ -46,7 +47,7 @@ double surface_radiance(const Scene& scene, const SurfaceHit& hit, const Vec3& p
     const SurfaceMaterial& o = scene.surfaces[other.surface]->material();
     const double t = scene.medium ? estimate_transmittance(*scene.medium, ray, other.t, lambda, rng, scratch)
                                   : 1.0;
-    l += reflectance * o.emissivity * node.planck(o.temperature_k) * t;
+    l += reflectance * o.emissivity_at(node.wavelength_um) * node.planck(o.temperature_k) * t;
   } else {
     const double sky = scene.sky.radiance(d, node.wavelength_um);
     if (sky > 0.0)

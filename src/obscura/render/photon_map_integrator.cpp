@@ -187,7 +187,13 @@ void PhotonMapIntegrator::radiance(const Ray& ray, int band, Rng& rng, double* o
   std::vector<double> background(n, 0.0);
   if (on_surface) {
     const SurfaceMaterial& m = scene_.surfaces[hit.surface]->material();
-    const double reflectance = 1.0 - m.emissivity;
+    // ρ = 1 − ε per node; the sun and the gathering are skipped when no node reflects.
+    std::vector<double> rho(n);
+    double reflectance = 0.0;  // the largest ρ of the band
+    for (int j = 0; j < n; ++j) {
+      rho[j] = m.reflectance_at(nodes.nodes()[j].wavelength_um);
+      reflectance = std::max(reflectance, rho[j]);
+    }
     const Vec3 p = ray.at(hit.t) + hit.normal * 1e-9;
     Vec3 to_sun;
     double cos_sun = 0.0;
@@ -197,23 +203,24 @@ void PhotonMapIntegrator::radiance(const Ray& ray, int band, Rng& rng, double* o
     }
     for (int j = 0; j < n; ++j) {
       const SpectralNode& node = nodes.nodes()[j];
-      background[j] = m.emissivity * node.planck(m.temperature_k);
+      background[j] = (1.0 - rho[j]) * node.planck(m.temperature_k);
       if (cos_sun > 0.0)
-        background[j] += reflectance * std::numbers::inv_pi * cos_sun * scene_.sun.irradiance(node.wavelength_um) *
+        background[j] += rho[j] * std::numbers::inv_pi * cos_sun * scene_.sun.irradiance(node.wavelength_um) *
                          transmittance_to_infinity(scene_, p, to_sun, node.lerp(), rng, scratch);
     }
     // Final gathering: ρ = 1 − ε times the radiance along one
     // cosine-distributed ray, found by this integrator itself (cloud light and
     // emission on the surface, other surfaces, the sky). The camera's surface
-    // always gathers, weighted by ρ (a roulette there would multiply the noise
-    // of a dark ground by 1/ρ); deeper gathers continue with probability ρ and
-    // weight 1, so the recursion ends without bias.
+    // always gathers, weighted by ρ_j (a roulette there would multiply the
+    // noise of a dark ground by 1/ρ); deeper gathers continue with probability
+    // ρ_max, the band's largest ρ, and weight ρ_j / ρ_max, so the recursion
+    // ends without bias.
     if (reflectance > 0.0 && depth < kMaxGatherDepth && (depth == 0 || rng.uniform() < reflectance)) {
-      const double weight = depth == 0 ? reflectance : 1.0;
       const Ray gather{p, local_to_world(hit.normal, sample_cosine_hemisphere(rng.uniform(), rng.uniform()))};
       std::vector<double> gathered(n, 0.0);
       radiance(gather, band, rng, gathered.data(), depth + 1);
-      for (int j = 0; j < n; ++j) background[j] += weight * gathered[j];
+      for (int j = 0; j < n; ++j)
+        background[j] += (depth == 0 ? rho[j] : rho[j] / reflectance) * gathered[j];
     }
   } else {
     for (int j = 0; j < n; ++j) {

@@ -53,6 +53,13 @@ SensorImage render_sensor(const Scene& scene, const Sensor& sensor, const Render
                            path_tracer ? std::vector<float>(pixels) : std::vector<float>()});
   }
 
+  // The atmosphere's own band radiance, (1 − τ) of which joins every ray (scene/atmosphere.h).
+  std::vector<double> air_band_radiance(sensor.bands.size(), 0.0);
+  if (scene.atmosphere.enabled)
+    for (std::size_t b = 0; b < sensor.bands.size(); ++b)
+      for (const SpectralNode& nd : band_nodes[b].nodes())
+        air_band_radiance[b] += nd.weight_um * nd.planck(scene.atmosphere.temperature_k);
+
   // Pass 1 of photon mapping: photon maps for every node of every band.
   std::unique_ptr<PhotonMapIntegrator> photon_map;
   if (photon_mapping) {
@@ -103,6 +110,13 @@ SensorImage render_sensor(const Scene& scene, const Sensor& sensor, const Render
         const std::vector<double> line_of_sight_tau =
             path_tracer && scene.medium ? scene.medium->optical_depth(ray, 0.0, t_max)
                                         : std::vector<double>(path_tracer ? medium_wl.size() : 0, 0.0);
+        // How far the ray runs through the air before it meets the scene
+        // (scene/atmosphere.h): to the surface, else through the clouds' box.
+        double air_path_m = hit_surface ? hit.t : 0.0;
+        if (scene.atmosphere.enabled && !hit_surface && scene.medium) {
+          double t0 = 0.0, t1 = std::numeric_limits<double>::infinity();
+          if (scene.medium->bounds().intersect(ray, t0, t1)) air_path_m = t1;
+        }
         for (std::size_t b = 0; b < image.bands.size(); ++b) {
           const SpectralNodes& nodes = band_nodes[b];
           const int n = static_cast<int>(nodes.size());
@@ -125,16 +139,21 @@ SensorImage render_sensor(const Scene& scene, const Sensor& sensor, const Render
               double background = scene.sky.radiance(ray.direction, nd.wavelength_um);
               if (hit_surface) {
                 const SurfaceMaterial& m = scene.surfaces[hit.surface]->material();
-                // Opaque grey Lambertian surface: emits ε B(T) and reflects
+                // Opaque Lambertian surface: emits ε B(T) and reflects
                 // (1 − ε) of the sky it faces (clouds' light on surfaces is the
                 // path tracer's job).
-                background = m.emissivity * nd.planck(m.temperature_k) +
-                             (1.0 - m.emissivity) *
+                const double emissivity = m.emissivity_at(nd.wavelength_um);
+                background = emissivity * nd.planck(m.temperature_k) +
+                             (1.0 - emissivity) *
                                  scene.sky.cosine_weighted_mean(hit.normal, nd.wavelength_um);
               }
               band_l += nd.weight_um * (radiance[i] + transmittance[i] * background);
               band_t += nd.weight_um * transmittance[i];
             }
+          }
+          if (scene.atmosphere.enabled) {
+            const double tau_air = scene.atmosphere.transmittance(image.bands[b].band, air_path_m);
+            band_l = tau_air * band_l + (1.0 - tau_air) * air_band_radiance[b];
           }
           sum_l[b] += band_l;
           sum_l2[b] += band_l * band_l;

@@ -83,8 +83,9 @@ double trace_path(const Scene& scene, const Ray& camera_ray, const SpectralNode&
       last_scatter_pdf = pdf;
     } else if (on_surface) {
       const SurfaceMaterial& m = scene.surfaces[hit.surface]->material();
-      radiance += beta * m.emissivity * node.planck(m.temperature_k);
-      beta *= 1.0 - m.emissivity;
+      const double emissivity = m.emissivity_at(node.wavelength_um);
+      radiance += beta * emissivity * node.planck(m.temperature_k);
+      beta *= 1.0 - emissivity;
       if (beta == 0.0) break;
       const Vec3 position = ray.at(hit.t) + hit.normal * 1e-9;
       if (scene.sun.enabled) {

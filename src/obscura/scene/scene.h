@@ -8,6 +8,8 @@
 
 #include "obscura/medium/medium.h"
 #include "obscura/scene/animated_cloud.h"
+#include "obscura/scene/atmosphere.h"
+#include "obscura/scene/metrics_settings.h"
 #include "obscura/scene/render_settings.h"
 #include "obscura/scene/sensor.h"
 #include "obscura/scene/sky.h"
@@ -36,6 +38,8 @@ struct Scene {
   std::vector<std::unique_ptr<Surface>> surfaces;
   Sky sky;
   Sun sun;  // used by the path tracer; the emission-absorption method refuses it
+  Atmosphere atmosphere;  // between the sensor and the scene; off unless the file has one
+  MetricsSettings metrics;
   RenderSettings settings;
   std::vector<std::filesystem::path> input_files;  // the scene file and the files it references
   nlohmann::json source;                           // the scene as read, for provenance
@@ -44,6 +48,12 @@ struct Scene {
 // Sets scene.medium to the clouds present at scene time t (s): the static
 // ones and each animated cloud's interpolated state, combined when several.
 void stage_scene(Scene& scene, double t);
+
+// A surface's material from its JSON object: "temperature" (K) and
+// "emissivity", a number in [0, 1] (default 1) or a table of
+// [wavelength_um, emissivity] points. Throws InputError naming the JSON path.
+class JsonObject;
+SurfaceMaterial parse_surface_material(JsonObject& o);
 
 // Loads and validates a scene file, staged at time 0; relative paths inside it are relative to
 // the file's folder. Throws InputError naming the file and JSON path.

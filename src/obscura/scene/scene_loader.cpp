@@ -20,19 +20,42 @@ namespace {
 
 constexpr int kMaxImageSide = 16384;
 
-SurfaceMaterial parse_material(JsonObject& o) {
+}  // namespace
+
+SurfaceMaterial parse_surface_material(JsonObject& o) {
   SurfaceMaterial m;
   m.temperature_k = o.number("temperature");
   if (!(m.temperature_k >= 0)) throw o.error("temperature", "must be >= 0 K");
-  m.emissivity = o.number_or("emissivity", 1.0);
-  if (!(m.emissivity >= 0 && m.emissivity <= 1)) throw o.error("emissivity", "must lie in [0, 1]");
+  if (o.has("emissivity") && o.raw("emissivity").is_array()) {
+    // A table of [wavelength_um, emissivity] points.
+    const auto& arr = o.array("emissivity");
+    if (arr.empty()) throw o.error("emissivity", "the table is empty (expected [[wavelength_um, emissivity], ...])");
+    for (std::size_t i = 0; i < arr.size(); ++i) {
+      const auto& p = arr[i];
+      const std::string at = fmt::format("emissivity/{}", i);
+      if (!p.is_array() || p.size() != 2 || !p[0].is_number() || !p[1].is_number())
+        throw o.error(at, "expected [wavelength_um, emissivity]");
+      const double wl = p[0].get<double>(), e = p[1].get<double>();
+      if (!(wl > 0 && std::isfinite(wl))) throw o.error(at, "the wavelength must be > 0 µm");
+      if (!m.emissivity_table.empty() && !(wl > m.emissivity_table.back().first))
+        throw o.error(at, "wavelengths must increase strictly");
+      if (!(e >= 0 && e <= 1)) throw o.error(at, "the emissivity must lie in [0, 1]");
+      m.emissivity_table.emplace_back(wl, e);
+    }
+  } else {
+    m.emissivity = o.number_or("emissivity", 1.0);
+    if (!(m.emissivity >= 0 && m.emissivity <= 1)) throw o.error("emissivity", "must lie in [0, 1]");
+  }
   return m;
 }
+
+namespace {
 
 std::unique_ptr<Surface> parse_surface(JsonObject o, int index) {
   const std::string type = o.string("type");
   const std::string name = o.string_or("name", fmt::format("{}{}", type, index));
-  const SurfaceMaterial m = parse_material(o);
+  const SurfaceMaterial m = parse_surface_material(o);
+  const bool target = o.boolean_or("target", false);
   std::unique_ptr<Surface> s;
   if (type == "ground") {
     s = std::make_unique<GroundPlane>(name, m, o.number_or("height", 0.0));
@@ -44,6 +67,7 @@ std::unique_ptr<Surface> parse_surface(JsonObject o, int index) {
   } else {
     throw o.error("type", fmt::format("unknown surface type '{}' (expected ground or box)", type));
   }
+  s->set_target(target);
   o.finish();
   return s;
 }
@@ -273,6 +297,51 @@ Scene parse_scene(const nlohmann::json& doc, const std::filesystem::path& file) 
   }
 
   if (auto sky = root.optional_object("sky")) scene.sky = parse_sky(*sky);
+
+  if (auto atm = root.optional_object("atmosphere")) {
+    Atmosphere& a = scene.atmosphere;
+    a.enabled = true;
+    a.temperature_k = atm->number("temperature");
+    if (!(a.temperature_k > 0 && a.temperature_k < 1000))
+      throw atm->error("temperature", "must be an air temperature in K (0, 1000)");
+    const auto& ext = atm->raw("extinction_per_km");
+    const std::string ext_path = atm->path_of("extinction_per_km");
+    auto coefficient = [&](const nlohmann::json& v, const std::string& path) {
+      if (!v.is_number() || !(v.get<double>() >= 0) || !std::isfinite(v.get<double>()))
+        throw InputError(fname, path, "expected an extinction coefficient >= 0 in 1/km");
+      return v.get<double>() / 1000.0;
+    };
+    if (ext.is_number()) {
+      a.extinction_per_m["*"] = coefficient(ext, ext_path);
+    } else if (ext.is_object()) {
+      for (const auto& [band, v] : ext.items()) a.extinction_per_m[band] = coefficient(v, ext_path + "/" + band);
+    } else {
+      throw atm->error("extinction_per_km",
+                       "expected a number (1/km, every band) or an object of band name → 1/km");
+    }
+    for (std::size_t i = 0; i < scene.sensors.size(); ++i)
+      for (const Band& b : scene.sensors[i].bands)
+        if (!a.extinction_per_m.count(b.name()) && !a.extinction_per_m.count("*"))
+          throw InputError(fname, ext_path,
+                           fmt::format("no coefficient for band '{}' of sensor '{}' (give one per band, "
+                                       "or a number for all)",
+                                       b.name(), scene.sensors[i].name));
+    atm->finish();
+  }
+
+  if (auto m = root.optional_object("metrics")) {
+    MetricsSettings& ms = scene.metrics;
+    ms.transmittance_threshold = m->number_or("transmittance_threshold", ms.transmittance_threshold);
+    if (!(ms.transmittance_threshold > 0 && ms.transmittance_threshold < 1))
+      throw m->error("transmittance_threshold", "must lie in (0, 1)");
+    ms.screened_fraction = m->number_or("screened_fraction", ms.screened_fraction);
+    if (!(ms.screened_fraction > 0 && ms.screened_fraction <= 1))
+      throw m->error("screened_fraction", "must lie in (0, 1]");
+    const long long margin = m->integer_or("background_margin_px", ms.background_margin_px);
+    if (margin < 1 || margin > kMaxImageSide) throw m->error("background_margin_px", "must be >= 1 pixel");
+    ms.background_margin_px = static_cast<int>(margin);
+    m->finish();
+  }
 
   if (auto sun = root.optional_object("sun")) {
     Sun& s = scene.sun;

@@ -1,8 +1,21 @@
 #include "obscura/scene/surface.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace obscura {
+
+double SurfaceMaterial::emissivity_at(double wavelength_um) const {
+  const auto& t = emissivity_table;
+  if (t.empty()) return emissivity;
+  if (wavelength_um <= t.front().first) return t.front().second;
+  if (wavelength_um >= t.back().first) return t.back().second;
+  const auto hi = std::upper_bound(t.begin(), t.end(), wavelength_um,
+                                   [](double w, const auto& p) { return w < p.first; });
+  const auto lo = hi - 1;
+  const double f = (wavelength_um - lo->first) / (hi->first - lo->first);
+  return lo->second + f * (hi->second - lo->second);
+}
 
 bool GroundPlane::intersect(const Ray& ray, double t_min, double t_max, SurfaceHit& hit) const {
   if (ray.direction.z == 0.0) return false;

@@ -1,10 +1,12 @@
 #pragma once
-// Opaque background surfaces for the emission–absorption renderer: an infinite
-// ground plane and axis-aligned boxes. Each is grey: emissivity ε and
-// temperature T, emitting ε B_λ(T) and reflecting (1 − ε) of the environment
-// Lambertianly (Kirchhoff's law for an opaque surface).
+// Opaque surfaces: an infinite ground plane and axis-aligned boxes here,
+// triangle meshes elsewhere. Each has a temperature T and an emissivity ε(λ)
+// (one value, or a table over wavelength), emits ε(λ) B_λ(T) and reflects
+// (1 − ε(λ)) of the light falling on it Lambertianly (Kirchhoff's law for an
+// opaque surface: the Lambertian reflectance is 1 − ε).
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "obscura/core/bbox.h"
@@ -14,7 +16,13 @@ namespace obscura {
 
 struct SurfaceMaterial {
   double temperature_k = 0.0;
-  double emissivity = 1.0;  // in [0, 1]
+  double emissivity = 1.0;  // in [0, 1]; used where emissivity_table is empty
+  // (wavelength µm, ε) points, wavelengths strictly increasing, ε in [0, 1]:
+  // linear between points, held constant beyond the first and the last.
+  std::vector<std::pair<double, double>> emissivity_table;
+
+  double emissivity_at(double wavelength_um) const;
+  double reflectance_at(double wavelength_um) const { return 1.0 - emissivity_at(wavelength_um); }
 };
 
 struct SurfaceHit {
@@ -32,10 +40,14 @@ class Surface {
   virtual bool intersect(const Ray& ray, double t_min, double t_max, SurfaceHit& hit) const = 0;
   const std::string& name() const { return name_; }
   const SurfaceMaterial& material() const { return material_; }
+  // Part of the target: its pixels form the target mask of screening metrics.
+  bool is_target() const { return target_; }
+  void set_target(bool target) { target_ = target; }
 
  private:
   std::string name_;
   SurfaceMaterial material_;
+  bool target_ = false;
 };
 
 // The plane z = height_m, seen from either side.
