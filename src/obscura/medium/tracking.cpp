@@ -61,10 +61,20 @@ std::optional<double> sample_free_flight(const Medium& medium, const Ray& ray, d
 
 double estimate_transmittance(const Medium& medium, const Ray& ray, double t_max,
                               const SpectralLerp& lambda, Rng& rng, MediumPoint& scratch) {
+  // Ratio tracking (Novák et al. 2014) with Russian roulette: below
+  // kRouletteBelow the estimate survives each further collision with
+  // probability ½ at twice the weight, which keeps it unbiased and stops
+  // shadow rays through opaque clouds after a few collisions instead of
+  // hundreds.
+  constexpr double kRouletteBelow = 0.05;
   double transmittance = 1.0;
   walk_tentative_collisions(medium, ray, t_max, lambda, rng, scratch,
                             [&](double, double sigma_t, double majorant) {
                               transmittance *= std::max(0.0, 1.0 - sigma_t / majorant);
+                              if (transmittance > 0.0 && transmittance < kRouletteBelow) {
+                                if (rng.uniform() >= 0.5) transmittance = 0.0;
+                                else transmittance *= 2.0;
+                              }
                               return transmittance != 0.0;
                             });
   return transmittance;

@@ -36,7 +36,8 @@ struct SpectralLerp {
 std::optional<double> sample_free_flight(const Medium& medium, const Ray& ray, double t_max,
                                          const SpectralLerp& lambda, Rng& rng, MediumPoint& scratch);
 
-// Unbiased estimate of the transmittance e^{−τ(0, t_max)} by ratio tracking.
+// Unbiased estimate of the transmittance e^{−τ(0, t_max)} by ratio tracking,
+// with Russian roulette once the estimate falls below 0.05.
 double estimate_transmittance(const Medium& medium, const Ray& ray, double t_max,
                               const SpectralLerp& lambda, Rng& rng, MediumPoint& scratch);
 

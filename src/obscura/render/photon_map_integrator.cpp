@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -55,8 +56,12 @@ PhotonMapIntegrator::PhotonMapIntegrator(const Scene& scene, const std::vector<S
       // camera's per-pixel streams, which are below 2^40.
       const std::uint64_t base = (static_cast<std::uint64_t>(b * 256 + j) + 1) << 40;
       NodeMap m;
+      const auto t0 = std::chrono::steady_clock::now();
       m.traced = trace_photons(scene, band_nodes[b].nodes()[j], base, tracing);
+      const auto t1 = std::chrono::steady_clock::now();
       m.map = std::make_unique<PhotonMap>(std::move(m.traced.photons));
+      tracing_seconds_ += std::chrono::duration<double>(t1 - t0).count();
+      build_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
       m.traced.photons.clear();
       maps_[b].push_back(std::move(m));
     }
@@ -97,6 +102,12 @@ void PhotonMapIntegrator::radiance(const Ray& ray, int band, Rng& rng, double* o
     std::vector<PhotonNeighbour> neighbours;
     double t_prev = 0.0;
     const Vec3 toward_camera = -ray.direction;
+    // Russian roulette deep in a cloud: once every node's transmittance to the
+    // camera is below kRouletteBelow, each further step survives with
+    // probability ½ and weight ×2 (unbiased), so an opaque cloud costs a few
+    // steps past the point where it stops mattering instead of its whole depth.
+    constexpr double kRouletteBelow = 1e-3;
+    double weight = 1.0;
     medium->trace_majorants(ray, 0.0, t_max, [&](const MajorantSegment& piece) {
       double majorant = 0.0;
       for (int k = 0; k < piece.spectral_count; ++k) majorant = std::max(majorant, piece.sigma_majorant[k]);
@@ -110,6 +121,12 @@ void PhotonMapIntegrator::radiance(const Ray& ray, int band, Rng& rng, double* o
         const std::vector<double> dtau = medium->optical_depth(ray, t_prev, t);
         for (std::size_t k = 0; k < tau.size(); ++k) tau[k] += dtau[k];
         t_prev = t;
+        double largest = 0.0;
+        for (int j = 0; j < n; ++j) largest = std::max(largest, std::exp(-nodes.nodes()[j].lerp()(tau.data())));
+        if (largest < kRouletteBelow) {
+          if (rng.uniform() >= 0.5) return false;
+          weight *= 2.0;
+        }
         const Vec3 x = ray.at(t);
         medium->coefficients_at(x, point);
         for (int j = 0; j < n; ++j) {
@@ -175,7 +192,7 @@ void PhotonMapIntegrator::radiance(const Ray& ray, int band, Rng& rng, double* o
             if (mean_sigma_s > 0.0)
               source += sigma_s * sum / (4.0 / 3.0 * std::numbers::pi * r2 * r * mean_sigma_s);
           }
-          scattered[j] += attenuation * h * source;
+          scattered[j] += weight * attenuation * h * source;
         }
       }
       return true;

@@ -52,6 +52,9 @@ class PhotonMapIntegrator {
   // Stored photons over all maps, bytes they use, and what pass 1 launched.
   std::size_t photon_count() const;
   std::size_t memory_bytes() const;
+  // Wall time of pass 1, s: tracing the photons, and building the kd-trees.
+  double tracing_seconds() const { return tracing_seconds_; }
+  double build_seconds() const { return build_seconds_; }
   const TracedPhotons& traced(int band, int node) const { return maps_[band][node].traced; }
   const PhotonMap& map(int band, int node) const { return *maps_[band][node].map; }
 
@@ -64,6 +67,7 @@ class PhotonMapIntegrator {
   const std::vector<SpectralNodes>& band_nodes_;
   PhotonMapSettings settings_;
   std::vector<std::vector<NodeMap>> maps_;
+  double tracing_seconds_ = 0.0, build_seconds_ = 0.0;
 };
 
 }  // namespace obscura

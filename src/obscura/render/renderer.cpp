@@ -69,6 +69,8 @@ SensorImage render_sensor(const Scene& scene, const Sensor& sensor, const Render
     image.stats.photons = photon_map->photon_count();
     image.stats.photon_bytes = photon_map->memory_bytes();
     image.stats.photon_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    image.stats.photon_trace_seconds = photon_map->tracing_seconds();
+    image.stats.photon_build_seconds = photon_map->build_seconds();
   }
   image.samples_per_pixel.assign(pixels, 0);
   std::atomic<std::uint64_t> segments{0}, evals{0}, samples_taken{0};

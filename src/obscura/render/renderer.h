@@ -31,6 +31,8 @@ struct RenderStats {
   std::uint64_t photons = 0;
   std::uint64_t photon_bytes = 0;
   double photon_seconds = 0;
+  double photon_trace_seconds = 0;  // … of which tracing photons
+  double photon_build_seconds = 0;  // … and building the kd-trees
 };
 
 struct SensorImage {
