@@ -1,12 +1,14 @@
 # The two commands of the README:
-#   make demo   installs dependencies, builds, renders the default scenario into out/demo/
+#   make demo   installs dependencies, builds, renders the screening scenario into out/demo/
 #   make test   installs dependencies, builds, runs the whole test suite
-# Other targets: build, bench, asan (sanitizer build + tests), clean.
+# Other targets: build, bench, asan (sanitizer build + tests), clean, demo-quick
+# (the demo at low resolution, as CI runs it), puff-example, animated-example,
+# smoke-screen-example.
 PRESET ?= release
 BUILD  := build/$(PRESET)
 JOBS   ?= $(shell nproc)
 
-.PHONY: all deps configure build test demo bench asan clean animated-example smoke-screen-example
+.PHONY: all deps configure build test demo bench asan clean animated-example smoke-screen-example puff-example demo-quick
 
 all: build
 
@@ -25,6 +27,9 @@ test: build
 demo: build
 	@OBSCURA=$(BUILD)/apps/obscura/obscura scripts/demo
 
+demo-quick: build
+	@OBSCURA=$(BUILD)/apps/obscura/obscura scripts/demo --quick
+
 bench: build
 	@$(BUILD)/bench/bench_emission_absorption
 
@@ -36,6 +41,9 @@ clean:
 
 animated-example: build
 	@OBSCURA=$(BUILD)/apps/obscura/obscura scripts/animated-example
+
+puff-example: build
+	@OBSCURA=$(BUILD)/apps/obscura/obscura scripts/puff-example
 
 smoke-screen-example: build
 	@OBSCURA=$(BUILD)/apps/obscura/obscura scripts/smoke-screen-example

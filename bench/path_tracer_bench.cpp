@@ -1,6 +1,6 @@
 // Path-tracer throughput and the cost of a reference image (issue #3): the
 // example scene of `make demo` (examples/puff-over-target, the puff of
-// scripts/demo) rendered with "method": "path-tracer". Prints paths per second
+// scripts/puff-example) rendered with "method": "path-tracer". Prints paths per second
 // (one path per pixel sample, spectral node and band), the mean relative
 // standard error over pixels, and the wall time of a render whose mean relative
 // standard error is 1 % (sample count predicted from a pilot render, since the
@@ -59,7 +59,7 @@ int main(int argc, char** argv) {
     else if (a == "--threads") threads = std::atoi(argv[i + 1]);
     else { std::fprintf(stderr, "unknown option %s\n", a.c_str()); return 2; }
   }
-  // The puff of scripts/demo: `make-puff --center -2,-12,3 --radius 2.5
+  // The puff of scripts/puff-example: `make-puff --center -2,-12,3 --radius 2.5
   // --extent 3.5 --resolution 96 --wavelengths 4,10 --sigma-a 0.25,0.30
   // --sigma-s 0.15,0.05 --g 0.6,0.4 --ambient 288 --excess 12`.
   GaussianPuffSpec spec;

@@ -3,12 +3,16 @@
 // line plots): owning pointers, the one font, text metrics, and the copy of an
 // opaque ARGB32 surface into packed RGB bytes.
 #include <cairo.h>
+#include <fmt/format.h>
 
+#include <array>
 #include <cstdint>
 #include <cstring>
 #include <memory>
 #include <string>
 #include <vector>
+
+#include "obscura/core/error.h"
 
 namespace obscura::cairo_canvas {
 
@@ -22,6 +26,43 @@ struct ContextDeleter {
 };
 using SurfacePtr = std::unique_ptr<cairo_surface_t, SurfaceDeleter>;
 using CairoPtr = std::unique_ptr<cairo_t, ContextDeleter>;
+
+// An ARGB32 image surface of width × height px; throws Error if cairo cannot
+// make one (e.g. too large). `white`: painted opaque white.
+inline SurfacePtr create_surface(int width, int height, bool white = false) {
+  SurfacePtr surface(cairo_image_surface_create(CAIRO_FORMAT_ARGB32, width, height));
+  if (cairo_surface_status(surface.get()) != CAIRO_STATUS_SUCCESS)
+    throw Error(fmt::format("cairo: cannot create a {}x{} surface: {}", width, height,
+                            cairo_status_to_string(cairo_surface_status(surface.get()))));
+  if (white) {
+    CairoPtr cr(cairo_create(surface.get()));
+    cairo_set_source_rgb(cr.get(), 1, 1, 1);
+    cairo_paint(cr.get());
+  }
+  return surface;
+}
+
+// Writes opaque sRGB pixels straight into an ARGB32 surface, for images that
+// need no resampling or filtering by cairo. Call cairo_surface_mark_dirty()
+// before drawing on the surface with cairo again.
+class PixelWriter {
+ public:
+  // Flushes `surface` (pending cairo drawing lands first).
+  explicit PixelWriter(cairo_surface_t* surface)
+      : data_((cairo_surface_flush(surface), cairo_image_surface_get_data(surface))),
+        stride_(cairo_image_surface_get_stride(surface)) {}
+  void put(int x, int y, std::array<std::uint8_t, 3> c) const {
+    // ARGB32 is a native-endian uint32 with alpha in the top byte; opaque, so
+    // premultiplication changes nothing.
+    const std::uint32_t argb = 0xff000000u | (std::uint32_t{c[0]} << 16) |
+                               (std::uint32_t{c[1]} << 8) | std::uint32_t{c[2]};
+    std::memcpy(data_ + static_cast<std::size_t>(y) * stride_ + static_cast<std::size_t>(x) * 4, &argb, 4);
+  }
+
+ private:
+  unsigned char* data_;
+  int stride_;
+};
 
 inline void set_font(cairo_t* cr, double size) {
   cairo_select_font_face(cr, kFontFamily, CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);

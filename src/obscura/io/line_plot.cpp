@@ -599,11 +599,7 @@ LinePlotRaster render_line_plot(const LinePlot& plot) {
   std::tie(out.x_min, out.x_max) = axis_range(plot, /*is_x=*/true);
   std::tie(out.y_min, out.y_max) = axis_range(plot, /*is_x=*/false);
 
-  SurfacePtr surface(cairo_image_surface_create(CAIRO_FORMAT_ARGB32, out.width, out.height));
-  if (cairo_surface_status(surface.get()) != CAIRO_STATUS_SUCCESS) {
-    throw Error(fmt::format("cairo: cannot create a {}x{} surface: {}", out.width, out.height,
-                            cairo_status_to_string(cairo_surface_status(surface.get()))));
-  }
+  SurfacePtr surface = cairo_canvas::create_surface(out.width, out.height);
   CairoPtr owner(cairo_create(surface.get()));
   cairo_t* cr = owner.get();
 

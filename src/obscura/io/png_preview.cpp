@@ -152,27 +152,13 @@ PreviewRaster render(const std::string& file, int width, int height,
                        2 * kMargin + static_cast<int>(std::ceil(title_w)));
   out.height = out.image_y + image_h + kMargin;
 
-  SurfacePtr surface(cairo_image_surface_create(CAIRO_FORMAT_ARGB32, out.width, out.height));
-  if (cairo_surface_status(surface.get()) != CAIRO_STATUS_SUCCESS) {
-    throw Error(fmt::format("cairo: cannot create a {}x{} surface: {}", out.width, out.height,
-                            cairo_status_to_string(cairo_surface_status(surface.get()))));
-  }
+  SurfacePtr surface = cairo_canvas::create_surface(out.width, out.height, /*white=*/true);
   CairoPtr cr(cairo_create(surface.get()));
-  cairo_set_source_rgb(cr.get(), 1, 1, 1);
-  cairo_paint(cr.get());
 
   // Pixels are written straight into the surface: nearest-neighbour upscale
   // and the colour bar need no resampling, and this avoids cairo filtering.
-  cairo_surface_flush(surface.get());
-  unsigned char* data = cairo_image_surface_get_data(surface.get());
-  const int stride = cairo_image_surface_get_stride(surface.get());
-  auto put = [&](int x, int y, std::array<std::uint8_t, 3> c) {
-    // ARGB32 is a native-endian uint32 with alpha in the top byte; opaque, so
-    // premultiplication changes nothing.
-    const std::uint32_t argb = 0xff000000u | (std::uint32_t{c[0]} << 16) |
-                               (std::uint32_t{c[1]} << 8) | std::uint32_t{c[2]};
-    std::memcpy(data + static_cast<size_t>(y) * stride + static_cast<size_t>(x) * 4, &argb, 4);
-  };
+  const cairo_canvas::PixelWriter canvas(surface.get());
+  auto put = [&](int x, int y, std::array<std::uint8_t, 3> c) { canvas.put(x, y, c); };
   for (int y = 0; y < image_h; ++y) {
     const float* row = values.data() + static_cast<size_t>(y / out.scale) * width;
     for (int x = 0; x < image_w; ++x) {

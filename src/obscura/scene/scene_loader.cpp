@@ -6,13 +6,17 @@
 #include <set>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "obscura/io/cloud_manifest.h"
 #include "obscura/io/json_reader.h"
+#include "obscura/io/obj_mesh.h"
 #include "obscura/medium/composite_medium.h"
 #include "obscura/io/vdb_keyframe.h"
 #include "obscura/medium/grid_medium.h"
 #include "obscura/medium/homogeneous_medium.h"
+#include "obscura/scene/heightfield.h"
+#include "obscura/scene/mesh_surface.h"
 #include "obscura/scene/scene.h"
 
 namespace obscura {
@@ -51,9 +55,96 @@ SurfaceMaterial parse_surface_material(JsonObject& o) {
 
 namespace {
 
-std::unique_ptr<Surface> parse_surface(JsonObject o, int index) {
+// A file named by `key`, relative to the scene's folder unless absolute; it
+// must exist, and is recorded among the scene's inputs (provenance).
+std::filesystem::path input_file(JsonObject& o, const std::string& key,
+                                 const std::filesystem::path& base, const char* what,
+                                 Scene& scene) {
+  std::filesystem::path file = o.string(key);
+  if (file.is_relative()) file = base / file;
+  if (!std::filesystem::is_regular_file(file))
+    throw o.error(key, fmt::format("cannot open {} '{}': no such file", what, file.string()));
+  scene.input_files.push_back(file);
+  return file;
+}
+
+// A MeshSurface, with Embree's rare failures (out of memory) named at the surface.
+std::unique_ptr<Surface> mesh_surface(JsonObject& o, const std::string& name,
+                                      const SurfaceMaterial& m, const TriangleMesh& mesh,
+                                      bool target) {
+  try {
+    auto s = std::make_unique<MeshSurface>(name, m, mesh);
+    s->set_target(target);
+    return s;
+  } catch (const Error& e) {
+    throw o.error("file", e.what());
+  }
+}
+
+// {"type": "mesh", "file": OBJ, "position", "heading_deg", "scale", "target",
+//  default "temperature"/"emissivity", "parts": {name: material}}: one
+// MeshSurface per part of the OBJ, named "<name>/<part>".
+void parse_mesh(JsonObject& o, const std::string& name, const std::filesystem::path& base,
+                Scene& scene) {
+  const std::filesystem::path file = input_file(o, "file", base, "mesh", scene);
+  TriangleMesh mesh = read_obj_mesh(file);
+  mesh.scale(o.positive_or("scale", 1.0));
+  mesh.rotate_heading_deg(o.number_or("heading_deg", 0.0));
+  mesh.translate(o.vec3_or("position", Vec3(0, 0, 0)));
+  const bool target = o.boolean_or("target", false);
+  std::optional<SurfaceMaterial> defaults;
+  if (o.has("temperature")) defaults = parse_surface_material(o);
+  else if (o.has("emissivity"))
+    throw o.error("emissivity",
+                  "give \"temperature\" with it (the default material of every part)");
+  std::vector<std::optional<SurfaceMaterial>> materials(mesh.part_names.size(), defaults);
+  if (o.has("parts")) {
+    const auto& entries = o.raw("parts");
+    JsonObject parts = o.object("parts");
+    for (const auto& [part, value] : entries.items()) {
+      const int index = mesh.find_part(part);
+      if (index < 0)
+        throw parts.error(part, fmt::format("no part '{}' in {} (its parts: {})", part,
+                                            file.string(), fmt::join(mesh.part_names, ", ")));
+      JsonObject entry = parts.object(part);
+      materials[index] = parse_surface_material(entry);
+      entry.finish();
+    }
+  }
+  for (std::size_t p = 0; p < mesh.part_names.size(); ++p)
+    if (!materials[p])
+      throw o.error("temperature",
+                    fmt::format("part '{}' has no material: give a default \"temperature\" or "
+                                "an entry for it under \"parts\"",
+                                mesh.part_names[p]));
+  o.finish();
+  for (std::size_t p = 0; p < mesh.part_names.size(); ++p)
+    scene.surfaces.push_back(
+        mesh_surface(o, name + "/" + mesh.part_names[p], *materials[p], mesh.part(p), target));
+}
+
+// {"type": "heightfield", "file": CSV, "origin": [x0, y0], "spacing_m", material, "target"}.
+void parse_heightfield(JsonObject& o, const std::string& name, const std::filesystem::path& base,
+                       Scene& scene) {
+  const std::filesystem::path file = input_file(o, "file", base, "heightfield", scene);
+  const std::vector<double> origin = o.numbers("origin");
+  if (origin.size() != 2)
+    throw o.error("origin", "expected [x0, y0] (m): where the first sample of the first row lies");
+  const double spacing = o.positive("spacing_m");
+  const SurfaceMaterial m = parse_surface_material(o);
+  const bool target = o.boolean_or("target", false);
+  o.finish();
+  const Heightfield h = read_heightfield_csv(file);
+  scene.surfaces.push_back(mesh_surface(
+      o, name, m, heightfield_mesh(h, origin[0], origin[1], spacing, name), target));
+}
+
+// One entry of "/surfaces": one Surface, or one per part of a mesh.
+void parse_surfaces(JsonObject o, int index, const std::filesystem::path& base, Scene& scene) {
   const std::string type = o.string("type");
   const std::string name = o.string_or("name", fmt::format("{}{}", type, index));
+  if (type == "mesh") return parse_mesh(o, name, base, scene);
+  if (type == "heightfield") return parse_heightfield(o, name, base, scene);
   const SurfaceMaterial m = parse_surface_material(o);
   const bool target = o.boolean_or("target", false);
   std::unique_ptr<Surface> s;
@@ -65,11 +156,13 @@ std::unique_ptr<Surface> parse_surface(JsonObject o, int index) {
       throw o.error("max", "every component must exceed the corresponding one of min");
     s = std::make_unique<BoxSurface>(name, m, BBox3(lo, hi));
   } else {
-    throw o.error("type", fmt::format("unknown surface type '{}' (expected ground or box)", type));
+    throw o.error("type", fmt::format("unknown surface type '{}' (expected ground, box, mesh or "
+                                      "heightfield)",
+                                      type));
   }
   s->set_target(target);
   o.finish();
-  return s;
+  scene.surfaces.push_back(std::move(s));
 }
 
 Band parse_band(const nlohmann::json& v, const std::string& file, const std::string& path) {
@@ -141,11 +234,7 @@ void parse_cloud(JsonObject o, const std::filesystem::path& base, Scene& scene, 
   const std::string type = o.string("type");
   std::shared_ptr<const Medium> m;
   if (type == "animated") {
-    std::filesystem::path file = o.string("manifest");
-    if (file.is_relative()) file = base / file;
-    if (!std::filesystem::is_regular_file(file))
-      throw o.error("manifest", fmt::format("cannot open cloud manifest '{}': no such file", file.string()));
-    inputs.push_back(file);
+    const std::filesystem::path file = input_file(o, "manifest", base, "cloud manifest", scene);
     CloudManifest manifest = read_cloud_manifest(file);
     for (const auto& k : manifest.keyframes) inputs.push_back(k.file);
     const double activation = o.number_or("activation", 0.0);
@@ -159,11 +248,7 @@ void parse_cloud(JsonObject o, const std::filesystem::path& base, Scene& scene, 
     return;
   }
   if (type == "vdb") {
-    std::filesystem::path file = o.string("file");
-    if (file.is_relative()) file = base / file;
-    if (!std::filesystem::is_regular_file(file))
-      throw o.error("file", fmt::format("cannot open cloud keyframe '{}': no such file", file.string()));
-    inputs.push_back(file);
+    const std::filesystem::path file = input_file(o, "file", base, "cloud keyframe", scene);
     CloudKeyframe kf = read_cloud_keyframe(file);
     m = std::make_shared<GridMedium>(kf.grid);
   } else if (type == "homogeneous") {
@@ -292,8 +377,8 @@ Scene parse_scene(const nlohmann::json& doc, const std::filesystem::path& file) 
   if (root.has("surfaces")) {
     const auto& surfaces = root.array("surfaces");
     for (std::size_t i = 0; i < surfaces.size(); ++i)
-      scene.surfaces.push_back(
-          parse_surface(JsonObject(surfaces[i], fname, fmt::format("/surfaces/{}", i)), static_cast<int>(i)));
+      parse_surfaces(JsonObject(surfaces[i], fname, fmt::format("/surfaces/{}", i)),
+                     static_cast<int>(i), base, scene);
   }
 
   if (auto sky = root.optional_object("sky")) scene.sky = parse_sky(*sky);

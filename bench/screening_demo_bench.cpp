@@ -1,0 +1,130 @@
+// Where a frame of `make demo` spends its time (docs/performance.md): the
+// smoke-screen cloud is prepared once (dispersion model + optics →
+// keyframes), then at each time the scene is staged and each sensor (one band
+// each in the demo) rendered with the photon map. Prints, per band, the wall
+// time per frame and its share in staging, photon tracing, kd-tree building
+// and ray marching, plus the one-off preparation. Nothing asserted.
+//   bench_screening_demo [--scene examples/demo/scene.json]
+//                        [--prepare examples/smoke-screen/prepare.json]
+//                        [--times 0:30:6] [--threads 0]
+// Run from the repository root (default paths are relative to it).
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <exception>
+#include <filesystem>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "obscura/prep/prepare.h"
+#include "obscura/render/renderer.h"
+#include "obscura/scene/scene.h"
+
+using namespace obscura;
+namespace fs = std::filesystem;
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+struct Totals {
+  double staging = 0, tracing = 0, build = 0, marching = 0;
+  int frames = 0;
+  double total() const { return staging + tracing + build + marching; }
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string scene_path = "examples/demo/scene.json", prepare_path = "examples/smoke-screen/prepare.json";
+  double t0 = 0, t1 = 30, step = 6;
+  int threads = 0;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    const bool has_value = i + 1 < argc;
+    if (a == "--scene" && has_value) scene_path = argv[++i];
+    else if (a == "--prepare" && has_value) prepare_path = argv[++i];
+    else if (a == "--threads" && has_value) threads = std::atoi(argv[++i]);
+    else if (a == "--times" && has_value) {
+      if (std::sscanf(argv[++i], "%lf:%lf:%lf", &t0, &t1, &step) != 3 || !(step > 0) || t1 < t0) {
+        std::fprintf(stderr, "bench_screening_demo: --times expects A:B:STEP\n");
+        return 2;
+      }
+    } else {
+      std::fprintf(stderr, "usage: bench_screening_demo [--scene S] [--prepare P] [--times A:B:STEP] [--threads N]\n");
+      return 2;
+    }
+  }
+  try {
+    const fs::path dir = fs::temp_directory_path() / ("obscura_bench_demo_" + std::to_string(::getpid()));
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    // The scene refers to cloud/cloud.json and tank.obj beside it.
+    fs::copy_file(scene_path, dir / "scene.json");
+    fs::copy_file(fs::path(scene_path).parent_path() / "../tank/tank.obj", dir / "tank.obj");
+    const auto p0 = Clock::now();
+    const PrepareReport report = prepare_cloud(prepare_path, dir / "cloud");
+    const double prepare_s = seconds_since(p0);
+
+    Scene scene = load_scene(dir / "scene.json");
+    RenderOptions options;
+    options.threads = threads;
+    options.seed = scene.settings.seed;
+    std::map<std::string, Totals> per_band;
+    std::vector<std::string> order;
+    int frames = 0;
+    for (double t = t0; t <= t1 + 1e-9 * step; t += step, ++frames) {
+      const auto s0 = Clock::now();
+      stage_scene(scene, t);
+      const double staging = seconds_since(s0);
+      for (const Sensor& sensor : scene.sensors) {
+        const SensorImage image = render_sensor(scene, sensor, options);
+        std::string label = sensor.name + " (";
+        for (std::size_t b = 0; b < sensor.bands.size(); ++b) label += (b ? "+" : "") + sensor.bands[b].name();
+        label += ")";
+        if (!per_band.count(label)) order.push_back(label);
+        Totals& tot = per_band[label];
+        // Staging is shared by the frame's sensors: each is charged its share.
+        tot.staging += staging / scene.sensors.size();
+        tot.tracing += image.stats.photon_trace_seconds;
+        tot.build += image.stats.photon_build_seconds;
+        tot.marching += image.stats.seconds - image.stats.photon_seconds;
+        ++tot.frames;
+      }
+    }
+    const int width = scene.sensors.front().camera.width(), height = scene.sensors.front().camera.height();
+    std::printf("scene %s: %d frames at t = %g…%g s, %d×%d px, method %s, %lld photons per node, %d threads\n",
+                scene_path.c_str(), frames, t0, t1, width, height, scene.settings.method.c_str(),
+                scene.settings.photon_map.photons_per_node, threads);
+    std::printf("preparation (once): %.2f s (concentrations %.2f, optics %.2f, keyframes %.2f), %zu keyframes\n",
+                prepare_s, report.seconds_concentrations, report.seconds_optics, report.seconds_keyframes,
+                report.keyframes.size());
+    std::printf("%-26s %10s %9s %9s %9s %9s\n", "sensor (band)", "s/frame", "staging", "tracing", "kd-tree",
+                "marching");
+    Totals all;
+    for (const std::string& label : order) {
+      const Totals& t = per_band[label];
+      const double total = t.total();
+      std::printf("%-26s %10.3f %8.1f%% %8.1f%% %8.1f%% %8.1f%%\n", label.c_str(), total / t.frames,
+                  100 * t.staging / total, 100 * t.tracing / total, 100 * t.build / total,
+                  100 * t.marching / total);
+      all.staging += t.staging;
+      all.tracing += t.tracing;
+      all.build += t.build;
+      all.marching += t.marching;
+    }
+    std::printf("%-26s %10.3f %8.1f%% %8.1f%% %8.1f%% %8.1f%%\n", "all sensors", all.total() / frames,
+                100 * all.staging / all.total(), 100 * all.tracing / all.total(), 100 * all.build / all.total(),
+                100 * all.marching / all.total());
+    std::printf("whole run: preparation %.1f s + frames %.1f s\n", prepare_s, all.total());
+    fs::remove_all(dir);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "bench_screening_demo: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}
