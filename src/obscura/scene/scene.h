@@ -37,7 +37,7 @@ struct Scene {
   std::vector<PixelRegion> regions;
   std::vector<std::unique_ptr<Surface>> surfaces;
   Sky sky;
-  Sun sun;  // used by the path tracer; the emission-absorption method refuses it
+  Sun sun;  // used by the path tracer and the photon map; the emission-absorption method refuses it
   Atmosphere atmosphere;  // between the sensor and the scene; off unless the file has one
   MetricsSettings metrics;
   RenderSettings settings;
