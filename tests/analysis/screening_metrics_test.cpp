@@ -179,6 +179,53 @@ TEST(ScreeningMetrics, NoCloudTargetFullyVisibleAndDeltaTFromPlanck) {
   }
 }
 
+// The same scene through air at 270 K with β = 5e-3 /m (τ ≈ 0.87
+// over the ~28 m range): no cloud still means transmittance 1, and the target
+// and background radiances are the means over their pixels of
+// τ_i B(T_surface) + (1 − τ_i) B(T_air), with each pixel's own range d_i
+// (from the geometry) and band radiances from the accurate quadrature; ΔT is
+// the difference of their apparent temperatures.
+TEST(ScreeningMetrics, NoCloudThroughTheAtmosphereGivesTheSurfacesApparentDifference) {
+  Scene scene = target_scene();
+  scene.atmosphere.enabled = true;
+  scene.atmosphere.temperature_k = 270.0;
+  scene.atmosphere.extinction_per_m = {{"*", 5e-3}};
+  const auto rows = render_metrics(scene);
+  const TargetMask mask = compute_target_mask(scene, scene.sensors[0], scene.metrics.background_margin_px);
+  const PinholeCamera& cam = scene.sensors[0].camera;
+  ASSERT_EQ(rows.size(), 2u);
+  for (const ScreeningMetrics& m : rows) {
+    SCOPED_TRACE(m.band.name());
+    const BandQuadrature q = BandQuadrature::accurate(m.band);
+    const double air = q.blackbody_radiance(270.0);
+    double sum_t = 0, sum_b = 0;
+    int n_t = 0, n_b = 0;
+    for (int y = 0; y < cam.height(); ++y)
+      for (int x = 0; x < cam.width(); ++x) {
+        const MaskLabel label = mask.labels[static_cast<std::size_t>(y) * cam.width() + x];
+        if (label == MaskLabel::kOther) continue;
+        SurfaceHit hit;
+        ASSERT_TRUE(intersect_surfaces(scene.surfaces, cam.generate_ray(x + 0.5, y + 0.5), 0.0,
+                                       std::numeric_limits<double>::infinity(), hit));
+        const double tau = std::exp(-5e-3 * hit.t);
+        const double surface = q.blackbody_radiance(label == MaskLabel::kTarget ? kTargetK : kGroundK);
+        const double l = tau * surface + (1.0 - tau) * air;
+        (label == MaskLabel::kTarget ? sum_t : sum_b) += l;
+        ++(label == MaskLabel::kTarget ? n_t : n_b);
+      }
+    const double lt = sum_t / n_t, lb = sum_b / n_b;
+    EXPECT_DOUBLE_EQ(m.transmittance_mean, 1.0);
+    EXPECT_EQ(m.screened_fraction, 0.0);
+    EXPECT_NEAR(m.target_radiance, lt, 1e-5 * lt);
+    EXPECT_NEAR(m.background_radiance, lb, 1e-5 * lb);
+    const double dt = q.apparent_temperature(lt) - q.apparent_temperature(lb);
+    EXPECT_NEAR(m.delta_t_k, dt, 3e-3);
+    // The air pulls both towards 270 K: the apparent difference is more than
+    // 1 K below the surfaces' 40 K (38.2 K in the MWIR).
+    EXPECT_LT(m.delta_t_k, kTargetK - kGroundK - 1.0);
+  }
+}
+
 TEST(ScreeningMetrics, OpaqueCloudScreensEveryTargetPixel) {
   Scene scene = target_scene();
   // σa = 10 /m over a box that holds the target with 3 m to spare above it:
