@@ -140,3 +140,30 @@ TEST(PhotonTracing, PhotonsDoNotDependOnTheThreadCount) {
 
 }  // namespace
 }  // namespace obscura
+
+namespace obscura {
+namespace {
+
+// A cloud sitting on a black ground: the ground can only absorb what leaves
+// the cloud downwards, which escapes anyway without it, so the stored photons
+// must be the same, bit for bit. (A regression test: sun photons whose disc
+// point lay below the ground were once dropped as "shaded", although their
+// line crosses the cloud before it reaches the ground — the photon map then
+// saw a cloud on the ground half as bright as the path tracer did.)
+TEST(PhotonTracing, ABlackGroundUnderTheCloudChangesNoPhoton) {
+  Scene scene = cube_scene(0.05, 1.5, 0.0);
+  scene.sun.enabled = true;
+  scene.sun.elevation_deg = 35.0;
+  const SpectralNodes nodes = nodes_at(0.55, scene.medium->wavelengths_um());
+  PhotonTracingSettings s;
+  s.photons = 20000;
+  const auto without = trace_photons(scene, nodes.nodes()[0], 1ull << 40, s);
+  scene.surfaces.push_back(std::make_unique<GroundPlane>("g", SurfaceMaterial{0.0, 1.0}, 0.0));
+  const auto with = trace_photons(scene, nodes.nodes()[0], 1ull << 40, s);
+  ASSERT_GT(without.photons.size(), 1000u);
+  ASSERT_EQ(without.photons.size(), with.photons.size());
+  EXPECT_EQ(0, std::memcmp(without.photons.data(), with.photons.data(), with.photons.size() * sizeof(Photon)));
+}
+
+}  // namespace
+}  // namespace obscura

@@ -168,13 +168,12 @@ TracedPhotons trace_photons(const Scene& scene, const SpectralNode& node, std::u
         const Vec3 d = -sample_sun_direction(scene.sun, rng);
         const Vec3 p = point_on_disc(sphere.center, d, sphere.radius_m, rng);
         l.power = scene.sun.irradiance(node.wavelength_um) * disc_area / n_sun;
+        // From outside the sphere towards the disc. Surfaces on the way are
+        // met by the tracing below (an unscattered photon stops there): the
+        // line must not be dropped because the disc point p itself is shaded
+        // (e.g. below the ground), since the part of the line before the
+        // shading surface can still cross the cloud.
         l.ray = Ray{p - d * (1.01 * sphere.radius_m), d};
-        SurfaceHit hit;
-        // A surface between the sun and the disc shades this line.
-        if (intersect_surfaces(scene.surfaces, Ray{p, -d}, 0.0, std::numeric_limits<double>::infinity(), hit)) {
-          launched[c][kSun] += l.power;
-          continue;
-        }
       } else if (i < n_sun + n_env) {
         source = kEnvironment;
         l = launch_environment(rng, scratch);
