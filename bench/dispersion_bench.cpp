@@ -22,16 +22,12 @@
 #include <numbers>
 #include <string>
 
+#include "bench_timer.h"
 #include "obscura/core/parallel.h"
 #include "obscura/prep/dispersion/dispersion_grid.h"
 
 using namespace obscura;
-
-namespace {
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-}  // namespace
+using bench::seconds_since;
 
 int main(int argc, char** argv) {
   int threads = 2, frames = 30;

@@ -9,17 +9,15 @@
 #include <cstdlib>
 #include <string>
 
+#include "bench_timer.h"
 #include "obscura/core/parallel.h"
 #include "obscura/optics/mie.h"
 #include "obscura/optics/size_distribution.h"
 
 using namespace obscura;
+using bench::seconds_since;
 
 namespace {
-
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
 
 // Calls f repeatedly for at least `budget` seconds; returns calls per second.
 template <class F>

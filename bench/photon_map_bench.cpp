@@ -22,16 +22,14 @@
 #include <thread>
 #include <vector>
 
+#include "bench_timer.h"
 #include "obscura/core/rng.h"
 #include "obscura/photon/photon_map.h"
 
 using namespace obscura;
+using bench::seconds_since;
 
 namespace {
-
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
 
 Vec3 gaussian_point(Rng& rng, double sigma_m) {
   Vec3 g;

@@ -19,17 +19,17 @@
 #include <string>
 #include <vector>
 
+#include "bench_timer.h"
 #include "obscura/prep/prepare.h"
 #include "obscura/render/renderer.h"
 #include "obscura/scene/scene.h"
 
 using namespace obscura;
+using bench::Clock;
+using bench::seconds_since;
 namespace fs = std::filesystem;
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 struct Totals {
   double staging = 0, tracing = 0, build = 0, marching = 0;

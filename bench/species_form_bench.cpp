@@ -25,20 +25,18 @@
 #include <string>
 #include <vector>
 
+#include "bench_timer.h"
 #include "obscura/io/vdb_keyframe.h"
 #include "obscura/prep/prepare.h"
 #include "obscura/render/renderer.h"
 #include "obscura/scene/scene.h"
 
 using namespace obscura;
+using bench::Clock;
+using bench::seconds_since;
 namespace fs = std::filesystem;
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point t0) {
-  return std::chrono::duration<double>(Clock::now() - t0).count();
-}
 
 struct FormFigures {
   PrepareReport report;

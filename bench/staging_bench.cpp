@@ -7,16 +7,12 @@
 #include <cstdlib>
 #include <string>
 
+#include "bench_timer.h"
 #include "obscura/medium/gaussian_puff.h"
 #include "obscura/medium/keyframe_interpolation.h"
 
 using namespace obscura;
-
-namespace {
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-}  // namespace
+using bench::seconds_since;
 
 int main(int argc, char** argv) {
   int resolution = 256, samples = 2;

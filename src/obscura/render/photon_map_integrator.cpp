@@ -60,6 +60,7 @@ PhotonMapIntegrator::PhotonMapIntegrator(const Scene& scene, const std::vector<S
       m.traced = trace_photons(scene, band_nodes[b].nodes()[j], base, tracing);
       const auto t1 = std::chrono::steady_clock::now();
       m.map = std::make_unique<PhotonMap>(std::move(m.traced.photons));
+      if (scene.sun.enabled) m.sun_irradiance = scene.sun.irradiance(band_nodes[b].nodes()[j].wavelength_um);
       tracing_seconds_ += std::chrono::duration<double>(t1 - t0).count();
       build_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
       m.traced.photons.clear();
@@ -121,8 +122,13 @@ void PhotonMapIntegrator::radiance(const Ray& ray, int band, Rng& rng, double* o
         const std::vector<double> dtau = medium->optical_depth(ray, t_prev, t);
         for (std::size_t k = 0; k < tau.size(); ++k) tau[k] += dtau[k];
         t_prev = t;
+        // Transmittance to the camera per node, e^{−τ(0,t)}.
+        std::array<double, kMaxSpectralNodes> attenuation;
         double largest = 0.0;
-        for (int j = 0; j < n; ++j) largest = std::max(largest, std::exp(-nodes.nodes()[j].lerp()(tau.data())));
+        for (int j = 0; j < n; ++j) {
+          attenuation[j] = std::exp(-nodes.nodes()[j].lerp()(tau.data()));
+          largest = std::max(largest, attenuation[j]);
+        }
         if (largest < kRouletteBelow) {
           if (rng.uniform() >= 0.5) return false;
           weight *= 2.0;
@@ -134,14 +140,13 @@ void PhotonMapIntegrator::radiance(const Ray& ray, int band, Rng& rng, double* o
           const SpectralLerp lambda = node.lerp();
           const double sigma_s = lambda(point.sigma_s.data());
           if (!(sigma_s > 0.0)) continue;
-          const double attenuation = std::exp(-lambda(tau.data()));
-          if (attenuation < 1e-12) continue;
+          if (attenuation[j] < 1e-12) continue;
           const HenyeyGreenstein phase(std::clamp(lambda(point.g.data()), -0.999999, 0.999999));
           double source = 0.0;  // σs ∫ p L_in dω, W m⁻³ sr⁻¹ µm⁻¹
           if (!settings_.pure) {
             if (scene_.sun.enabled) {
               const Vec3 to_sun = sample_sun_direction(scene_.sun, rng);
-              source += sigma_s * phase.eval(ray.direction, to_sun) * scene_.sun.irradiance(node.wavelength_um) *
+              source += sigma_s * phase.eval(ray.direction, to_sun) * maps_[band][j].sun_irradiance *
                         transmittance_to_infinity(scene_, x, to_sun, lambda, rng, scratch);
             }
             // Environment: one direction from the phase function (weight 1).
@@ -192,7 +197,7 @@ void PhotonMapIntegrator::radiance(const Ray& ray, int band, Rng& rng, double* o
             if (mean_sigma_s > 0.0)
               source += sigma_s * sum / (4.0 / 3.0 * std::numbers::pi * r2 * r * mean_sigma_s);
           }
-          scattered[j] += weight * attenuation * h * source;
+          scattered[j] += weight * attenuation[j] * h * source;
         }
       }
       return true;
@@ -205,7 +210,7 @@ void PhotonMapIntegrator::radiance(const Ray& ray, int band, Rng& rng, double* o
   if (on_surface) {
     const SurfaceMaterial& m = scene_.surfaces[hit.surface]->material();
     // ρ = 1 − ε per node; the sun and the gathering are skipped when no node reflects.
-    std::vector<double> rho(n);
+    std::array<double, kMaxSpectralNodes> rho;
     double reflectance = 0.0;  // the largest ρ of the band
     for (int j = 0; j < n; ++j) {
       rho[j] = m.reflectance_at(nodes.nodes()[j].wavelength_um);
@@ -222,7 +227,7 @@ void PhotonMapIntegrator::radiance(const Ray& ray, int band, Rng& rng, double* o
       const SpectralNode& node = nodes.nodes()[j];
       background[j] = (1.0 - rho[j]) * node.planck(m.temperature_k);
       if (cos_sun > 0.0)
-        background[j] += rho[j] * std::numbers::inv_pi * cos_sun * scene_.sun.irradiance(node.wavelength_um) *
+        background[j] += rho[j] * std::numbers::inv_pi * cos_sun * maps_[band][j].sun_irradiance *
                          transmittance_to_infinity(scene_, p, to_sun, node.lerp(), rng, scratch);
     }
     // Final gathering: ρ = 1 − ε times the radiance along one

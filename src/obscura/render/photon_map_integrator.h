@@ -62,6 +62,7 @@ class PhotonMapIntegrator {
   struct NodeMap {
     TracedPhotons traced;  // photons moved into `map`; powers and counts kept
     std::unique_ptr<PhotonMap> map;
+    double sun_irradiance = 0.0;  // W m⁻² µm⁻¹ at the node, 0 without a sun (used at every marching step)
   };
   const Scene& scene_;
   const std::vector<SpectralNodes>& band_nodes_;

@@ -53,12 +53,15 @@ SensorImage render_sensor(const Scene& scene, const Sensor& sensor, const Render
                            path_tracer ? std::vector<float>(pixels) : std::vector<float>()});
   }
 
-  // The atmosphere's own band radiance, (1 − τ) of which joins every ray (scene/atmosphere.h).
-  std::vector<double> air_band_radiance(sensor.bands.size(), 0.0);
+  // The atmosphere per band (scene/atmosphere.h): its extinction coefficient
+  // (1/m) and its own band radiance, (1 − τ) of which joins every ray.
+  std::vector<double> air_extinction_per_m(sensor.bands.size(), 0.0), air_band_radiance(sensor.bands.size(), 0.0);
   if (scene.atmosphere.enabled)
-    for (std::size_t b = 0; b < sensor.bands.size(); ++b)
+    for (std::size_t b = 0; b < sensor.bands.size(); ++b) {
+      air_extinction_per_m[b] = scene.atmosphere.extinction_for(sensor.bands[b]);
       for (const SpectralNode& nd : band_nodes[b].nodes())
         air_band_radiance[b] += nd.weight_um * nd.planck(scene.atmosphere.temperature_k);
+    }
 
   // Pass 1 of photon mapping: photon maps for every node of every band.
   std::unique_ptr<PhotonMapIntegrator> photon_map;
@@ -154,7 +157,7 @@ SensorImage render_sensor(const Scene& scene, const Sensor& sensor, const Render
             }
           }
           if (scene.atmosphere.enabled) {
-            const double tau_air = scene.atmosphere.transmittance(image.bands[b].band, air_path_m);
+            const double tau_air = std::exp(-air_extinction_per_m[b] * air_path_m);
             band_l = tau_air * band_l + (1.0 - tau_air) * air_band_radiance[b];
           }
           sum_l[b] += band_l;

@@ -123,6 +123,7 @@ MeshSurface::MeshSurface(std::string name, SurfaceMaterial material, const Trian
     throw Error(fmt::format("surface '{}': too many triangles for Embree", this->name()));
   centre_ = bounds_.center();
   margin_ = 1e-4 * std::max(length(bounds_.extent()), 1e-6);
+  padded_bounds_ = BBox3(bounds_.lo - Vec3(margin_, margin_, margin_), bounds_.hi + Vec3(margin_, margin_, margin_));
 
   RTCDevice device = embree_device();
   rtcRetainDevice(device);
@@ -166,22 +167,22 @@ MeshSurface::MeshSurface(std::string name, SurfaceMaterial material, const Trian
 
 MeshSurface::~MeshSurface() = default;
 
-double MeshSurface::plane_distance(std::size_t index, const Ray& ray) const {
+Vec3 MeshSurface::area_normal(std::size_t index) const {
   const auto& tri = triangles_[index];
   const Vec3& a = vertices_[tri[0]];
-  const Vec3 n = cross(vertices_[tri[1]] - a, vertices_[tri[2]] - a);
-  return dot(n, a - ray.origin) / dot(n, ray.direction);
+  return cross(vertices_[tri[1]] - a, vertices_[tri[2]] - a);
+}
+
+double MeshSurface::plane_distance(std::size_t index, const Ray& ray) const {
+  return plane_distance(vertices_[triangles_[index][0]], area_normal(index), ray);
 }
 
 bool MeshSurface::intersect(const Ray& ray, double t_min, double t_max, SurfaceHit& hit) const {
   if (!is_finite(ray.origin) || !is_finite(ray.direction)) return false;
   const double t_lo = std::max(t_min, 0.0);
   // The part of the window inside the mesh's box, widened by the margin.
-  BBox3 box = bounds_;
-  box.lo -= Vec3(margin_, margin_, margin_);
-  box.hi += Vec3(margin_, margin_, margin_);
   double t0 = t_lo, t1 = t_max;
-  if (!(t0 < t1) || !box.intersect(ray, t0, t1)) return false;
+  if (!(t0 < t1) || !padded_bounds_.intersect(ray, t0, t1)) return false;
   // Embree's ray starts `margin_` before the box; its window covers the
   // clipped one with margin to spare, and the filter applies the exact one.
   const double shift = t0 - margin_;
@@ -204,10 +205,9 @@ bool MeshSurface::intersect(const Ray& ray, double t_min, double t_max, SurfaceH
   rtcIntersect1(scene_.get(), &ctx.base, &rh);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
   // The filter accepted this triangle: its distance and normal in double precision.
-  const auto& tri = triangles_[rh.hit.primID];
-  const Vec3 n = normalize(
-      cross(vertices_[tri[1]] - vertices_[tri[0]], vertices_[tri[2]] - vertices_[tri[0]]));
-  hit.t = plane_distance(rh.hit.primID, ray);
+  const Vec3 area_n = area_normal(rh.hit.primID);
+  hit.t = plane_distance(vertices_[triangles_[rh.hit.primID][0]], area_n, ray);
+  const Vec3 n = normalize(area_n);
   hit.normal = dot(n, ray.direction) > 0 ? -n : n;
   return true;
 }

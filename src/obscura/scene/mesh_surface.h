@@ -56,6 +56,13 @@ class MeshSurface final : public Surface {
   double plane_distance(std::size_t index, const Ray& ray) const;
 
  private:
+  // (b − a) × (c − a) of BVH triangle `index`: its normal, not normalised.
+  Vec3 area_normal(std::size_t index) const;
+  // Distance along `ray` to the plane through vertex `a` with normal `n`.
+  static double plane_distance(const Vec3& a, const Vec3& n, const Ray& ray) {
+    return dot(n, a - ray.origin) / dot(n, ray.direction);
+  }
+
   struct SceneRelease {
     void operator()(RTCSceneTy* scene) const;
   };
@@ -64,6 +71,7 @@ class MeshSurface final : public Surface {
   BBox3 bounds_;
   Vec3 centre_;
   double margin_ = 0;  // m: how far the float ray starts before the box, and Embree's slack
+  BBox3 padded_bounds_;  // bounds_ grown by margin_ on every side: where rays are clipped
   std::unique_ptr<RTCSceneTy, SceneRelease> scene_;
 };
 
