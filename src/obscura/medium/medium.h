@@ -78,6 +78,9 @@ class Medium {
   // Optical depth τ = ∫ σt ds along the ray over [t_min, t_max], one value per
   // spectral sample, integrated exactly from the segments' cubics.
   std::vector<double> optical_depth(const Ray& ray, double t_min, double t_max) const;
+  // The same added into tau[0 … wavelengths_um().size()) (no allocation: for
+  // callers that accumulate τ step by step along a ray).
+  void add_optical_depth(const Ray& ray, double t_min, double t_max, double* tau) const;
 };
 
 }  // namespace obscura

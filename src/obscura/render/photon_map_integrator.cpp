@@ -119,8 +119,7 @@ void PhotonMapIntegrator::radiance(const Ray& ray, int band, Rng& rng, double* o
       const double h = length / count;
       for (int i = 0; i < count; ++i) {
         const double t = piece.t_begin + (i + rng.uniform()) * h;
-        const std::vector<double> dtau = medium->optical_depth(ray, t_prev, t);
-        for (std::size_t k = 0; k < tau.size(); ++k) tau[k] += dtau[k];
+        medium->add_optical_depth(ray, t_prev, t, tau.data());
         t_prev = t;
         // Transmittance to the camera per node, e^{−τ(0,t)}.
         std::array<double, kMaxSpectralNodes> attenuation;
