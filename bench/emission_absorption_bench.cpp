@@ -20,11 +20,18 @@ int main(int argc, char** argv) {
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string a = argv[i];
     const int v = std::atoi(argv[i + 1]);
-    if (a == "--resolution") resolution = v;
-    else if (a == "--pixels") pixels = v;
-    else if (a == "--threads") threads = v;
-    else if (a == "--nodes") nodes = v;
-    else { std::fprintf(stderr, "unknown option %s\n", a.c_str()); return 2; }
+    if (a == "--resolution")
+      resolution = v;
+    else if (a == "--pixels")
+      pixels = v;
+    else if (a == "--threads")
+      threads = v;
+    else if (a == "--nodes")
+      nodes = v;
+    else {
+      std::fprintf(stderr, "unknown option %s\n", a.c_str());
+      return 2;
+    }
   }
   // A non-isothermal, scattering puff that fills the grid: every cell is
   // non-zero, so every cell the rays cross is a real voxel step.
@@ -41,8 +48,10 @@ int main(int argc, char** argv) {
   spec.temperature_excess_k = 30;
   auto t0 = std::chrono::steady_clock::now();
   Scene scene;
-  scene.medium = std::make_shared<GridMedium>(std::make_shared<VoxelGrid>(make_gaussian_puff(spec)));
-  const double build_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  scene.medium =
+      std::make_shared<GridMedium>(std::make_shared<VoxelGrid>(make_gaussian_puff(spec)));
+  const double build_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   Sensor sensor;
   sensor.name = "bench";
   // Looking at the grid face-on from outside, the field of view just covering it.
@@ -56,9 +65,12 @@ int main(int argc, char** argv) {
   const int cores = resolve_thread_count(threads);
   const double s = img.stats.seconds;
   std::printf("emission-absorption benchmark\n");
-  std::printf("  grid %d^3 (%.1f MB, built in %.2f s), image %dx%d, %d spectral node(s), %d thread(s)\n",
-              resolution, scene.medium ? static_cast<const GridMedium&>(*scene.medium).grid().memory_bytes() / 1e6 : 0.0,
-              build_s, pixels, pixels, nodes, cores);
+  std::printf(
+      "  grid %d^3 (%.1f MB, built in %.2f s), image %dx%d, %d spectral node(s), %d thread(s)\n",
+      resolution,
+      scene.medium ? static_cast<const GridMedium&>(*scene.medium).grid().memory_bytes() / 1e6
+                   : 0.0,
+      build_s, pixels, pixels, nodes, cores);
   std::printf("  wall time            %.3f s\n", s);
   std::printf("  rays                 %llu (%.3g rays/s, %.3g rays/s/core)\n",
               static_cast<unsigned long long>(img.stats.rays), img.stats.rays / s,
@@ -68,6 +80,7 @@ int main(int argc, char** argv) {
               static_cast<double>(img.stats.segments) / img.stats.rays);
   std::printf("  voxel steps/s/core   %.3g\n", img.stats.segments / s / cores);
   std::printf("  integrand evals/step %.2f\n",
-              static_cast<double>(img.stats.integrand_evals) / std::max<unsigned long long>(1, img.stats.segments));
+              static_cast<double>(img.stats.integrand_evals) /
+                  std::max<unsigned long long>(1, img.stats.segments));
   return 0;
 }

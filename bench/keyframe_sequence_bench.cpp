@@ -10,9 +10,8 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <string>
-
 #include <nlohmann/json.hpp>
+#include <string>
 
 #include "obscura/io/cloud_manifest.h"
 #include "obscura/io/vdb_keyframe.h"
@@ -40,12 +39,21 @@ int main(int argc, char** argv) {
   std::filesystem::path dir = std::filesystem::temp_directory_path() / "obscura_sequence_bench";
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string a = argv[i];
-    if (a == "--keyframes") keyframes = std::atoi(argv[i + 1]);
-    else if (a == "--resolution") resolution = std::atoi(argv[i + 1]);
-    else if (a == "--dir") dir = argv[i + 1];
-    else { std::fprintf(stderr, "unknown option %s\n", a.c_str()); return 2; }
+    if (a == "--keyframes")
+      keyframes = std::atoi(argv[i + 1]);
+    else if (a == "--resolution")
+      resolution = std::atoi(argv[i + 1]);
+    else if (a == "--dir")
+      dir = argv[i + 1];
+    else {
+      std::fprintf(stderr, "unknown option %s\n", a.c_str());
+      return 2;
+    }
   }
-  if (keyframes < 3) { std::fprintf(stderr, "--keyframes must be >= 3\n"); return 2; }
+  if (keyframes < 3) {
+    std::fprintf(stderr, "--keyframes must be >= 3\n");
+    return 2;
+  }
   std::filesystem::create_directories(dir);
   const double rss_start = peak_rss_mib();
   auto t0 = std::chrono::steady_clock::now();
@@ -73,7 +81,9 @@ int main(int argc, char** argv) {
       {"keyframes", frames},
       {"lifecycle",
        // Initialisation plays almost every keyframe once; a short loop at the end.
-       {{"init_end", keyframes - 3}, {"loop_start", keyframes - 3}, {"loop_end", keyframes - 2},
+       {{"init_end", keyframes - 3},
+        {"loop_start", keyframes - 3},
+        {"loop_end", keyframes - 2},
         {"loop_wrap", 0.5},
         {"extinction_start", keyframes - 1}}}};
   std::ofstream(dir / "cloud.json") << manifest.dump();
@@ -91,17 +101,20 @@ int main(int argc, char** argv) {
   const double stage_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   std::printf("keyframe sequence benchmark\n");
-  std::printf("  %d keyframes of %d^3 voxels, 2 spectral samples: %.1f MiB each in memory, %.1f MiB "
-              "for the whole sequence (written in %.1f s)\n",
-              keyframes, resolution, keyframe_bytes / 1048576.0,
-              keyframes * keyframe_bytes / 1048576.0, write_s);
-  std::printf("  staged %d frames across the sequence: %.1f ms per frame, %zu keyframe loads, %zu "
-              "cache hits (cache of %zu)\n",
-              frames_staged, 1e3 * stage_s / frames_staged, cloud.cache().loads(),
-              cloud.cache().hits(), cloud.cache().capacity());
-  std::printf("  peak RSS: %.1f MiB at start, %.1f MiB after writing, %.1f MiB after staging "
-              "(resident now %.1f MiB)\n",
-              rss_start, rss_after_write, peak_rss_mib(), current_rss_mib());
+  std::printf(
+      "  %d keyframes of %d^3 voxels, 2 spectral samples: %.1f MiB each in memory, %.1f MiB "
+      "for the whole sequence (written in %.1f s)\n",
+      keyframes, resolution, keyframe_bytes / 1048576.0, keyframes * keyframe_bytes / 1048576.0,
+      write_s);
+  std::printf(
+      "  staged %d frames across the sequence: %.1f ms per frame, %zu keyframe loads, %zu "
+      "cache hits (cache of %zu)\n",
+      frames_staged, 1e3 * stage_s / frames_staged, cloud.cache().loads(), cloud.cache().hits(),
+      cloud.cache().capacity());
+  std::printf(
+      "  peak RSS: %.1f MiB at start, %.1f MiB after writing, %.1f MiB after staging "
+      "(resident now %.1f MiB)\n",
+      rss_start, rss_after_write, peak_rss_mib(), current_rss_mib());
   std::printf("  (%zu voxels staged)\n", voxels);
   std::filesystem::remove_all(dir);
   return 0;

@@ -52,12 +52,20 @@ int main(int argc, char** argv) {
   double target = 0.01;
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string a = argv[i];
-    if (a == "--width") width = std::atoi(argv[i + 1]);
-    else if (a == "--height") height = std::atoi(argv[i + 1]);
-    else if (a == "--pilot-spp") pilot = std::atoi(argv[i + 1]);
-    else if (a == "--target") target = std::atof(argv[i + 1]);
-    else if (a == "--threads") threads = std::atoi(argv[i + 1]);
-    else { std::fprintf(stderr, "unknown option %s\n", a.c_str()); return 2; }
+    if (a == "--width")
+      width = std::atoi(argv[i + 1]);
+    else if (a == "--height")
+      height = std::atoi(argv[i + 1]);
+    else if (a == "--pilot-spp")
+      pilot = std::atoi(argv[i + 1]);
+    else if (a == "--target")
+      target = std::atof(argv[i + 1]);
+    else if (a == "--threads")
+      threads = std::atoi(argv[i + 1]);
+    else {
+      std::fprintf(stderr, "unknown option %s\n", a.c_str());
+      return 2;
+    }
   }
   // The puff of scripts/puff-example: `make-puff --center -2,-12,3 --radius 2.5
   // --extent 3.5 --resolution 96 --wavelengths 4,10 --sigma-a 0.25,0.30
@@ -74,10 +82,12 @@ int main(int argc, char** argv) {
   spec.ambient_temperature_k = 288;
   spec.temperature_excess_k = 12;
   Scene scene;
-  scene.medium = std::make_shared<GridMedium>(std::make_shared<VoxelGrid>(make_gaussian_puff(spec)));
-  scene.surfaces.push_back(std::make_unique<GroundPlane>("ground", SurfaceMaterial{288, 0.95}, 0.0));
+  scene.medium =
+      std::make_shared<GridMedium>(std::make_shared<VoxelGrid>(make_gaussian_puff(spec)));
   scene.surfaces.push_back(
-      std::make_unique<BoxSurface>("target", SurfaceMaterial{330, 0.9}, BBox3({-3, 0, 0}, {3, 6, 2.5})));
+      std::make_unique<GroundPlane>("ground", SurfaceMaterial{288, 0.95}, 0.0));
+  scene.surfaces.push_back(std::make_unique<BoxSurface>("target", SurfaceMaterial{330, 0.9},
+                                                        BBox3({-3, 0, 0}, {3, 6, 2.5})));
   scene.sky = Sky::blackbody(250, true);
   Sensor sensor;
   sensor.name = "ir";
@@ -88,8 +98,10 @@ int main(int argc, char** argv) {
   scene.settings.spectral_nodes_per_band = 8;
 
   const int cores = resolve_thread_count(threads);
-  std::printf("example scene (puff over target), %dx%d px, mwir + lwir, 8 spectral nodes per band, "
-              "%d threads\n", width, height, cores);
+  std::printf(
+      "example scene (puff over target), %dx%d px, mwir + lwir, 8 spectral nodes per band, "
+      "%d threads\n",
+      width, height, cores);
   const Run p = render(scene, pilot, threads);
   std::printf("pilot   %5d spp: %8.2f s, %.3g paths/s (%.3g per core), mean relative stderr %.4f\n",
               pilot, p.seconds, p.paths / p.seconds, p.paths / p.seconds / cores,
@@ -101,8 +113,8 @@ int main(int argc, char** argv) {
   for (int round = 0; round < 4 && r.mean_relative_stderr > target; ++round) {
     spp = static_cast<int>(std::ceil(spp * 1.05 * std::pow(r.mean_relative_stderr / target, 2.0)));
     r = render(scene, spp, threads);
-    std::printf("render  %5d spp: %8.2f s, %.3g paths/s, mean relative stderr %.4f\n", spp, r.seconds,
-                r.paths / r.seconds, r.mean_relative_stderr);
+    std::printf("render  %5d spp: %8.2f s, %.3g paths/s, mean relative stderr %.4f\n", spp,
+                r.seconds, r.paths / r.seconds, r.mean_relative_stderr);
   }
   std::printf("reference image at mean relative stderr <= %.3g: %d spp, %.2f s wall\n", target, spp,
               r.seconds);

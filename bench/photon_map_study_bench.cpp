@@ -76,14 +76,24 @@ int main(int argc, char** argv) {
   plot.y = {"relative RMSE", true, std::nullopt, std::nullopt};
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string a = argv[i];
-    if (a == "--width") width = std::atoi(argv[i + 1]);
-    else if (a == "--height") height = std::atoi(argv[i + 1]);
-    else if (a == "--reference-spp") reference_spp = std::atoi(argv[i + 1]);
-    else if (a == "--scene") which = argv[i + 1];
-    else if (a == "--threads") threads = std::atoi(argv[i + 1]);
-    else if (a == "--csv") csv = argv[i + 1];
-    else if (a == "--plot") plot_path = argv[i + 1];
-    else { std::fprintf(stderr, "unknown option %s\n", a.c_str()); return 2; }
+    if (a == "--width")
+      width = std::atoi(argv[i + 1]);
+    else if (a == "--height")
+      height = std::atoi(argv[i + 1]);
+    else if (a == "--reference-spp")
+      reference_spp = std::atoi(argv[i + 1]);
+    else if (a == "--scene")
+      which = argv[i + 1];
+    else if (a == "--threads")
+      threads = std::atoi(argv[i + 1]);
+    else if (a == "--csv")
+      csv = argv[i + 1];
+    else if (a == "--plot")
+      plot_path = argv[i + 1];
+    else {
+      std::fprintf(stderr, "unknown option %s\n", a.c_str());
+      return 2;
+    }
   }
   std::ofstream out;
   if (!csv.empty()) {
@@ -99,21 +109,27 @@ int main(int argc, char** argv) {
     std::printf("%s, %dx%d px: path-traced reference %d spp in %.1f s, its relative noise %.4f\n",
                 name.c_str(), width, height, reference_spp, ref.seconds,
                 relative_noise(ref.stderr_l, ref.radiance));
-    std::printf("  %-12s %6s %9s %5s %9s %12s %10s\n", "method", "spp", "photons", "k", "seconds", "rel. RMSE",
-                "mean bias");
+    std::printf("  %-12s %6s %9s %5s %9s %12s %10s\n", "method", "spp", "photons", "k", "seconds",
+                "rel. RMSE", "mean bias");
     auto row = [&](const char* method, int spp, long long photons, int k, const Result& r) {
       const double e = relative_rmse(r.radiance, ref.radiance);
       double sx = 0, sr = 0;
-      for (std::size_t i = 0; i < r.radiance.size(); ++i) { sx += r.radiance[i]; sr += ref.radiance[i]; }
-      std::printf("  %-12s %6d %9lld %5d %9.3f %12.4f %+10.4f", method, spp, photons, k, r.seconds, e, sx / sr - 1);
+      for (std::size_t i = 0; i < r.radiance.size(); ++i) {
+        sx += r.radiance[i];
+        sr += ref.radiance[i];
+      }
+      std::printf("  %-12s %6d %9lld %5d %9.3f %12.4f %+10.4f", method, spp, photons, k, r.seconds,
+                  e, sx / sr - 1);
       if (photons > 0)
         std::printf("   (pass 1 %.3f s, %llu photons stored, %.1f MB)", r.photon_seconds,
                     static_cast<unsigned long long>(r.photons), r.photon_bytes / 1e6);
       std::printf("\n");
-      if (out) out << name << "," << method << "," << spp << "," << photons << "," << k << "," << r.seconds
-                   << "," << e << "\n";
+      if (out)
+        out << name << "," << method << "," << spp << "," << photons << "," << k << "," << r.seconds
+            << "," << e << "\n";
     };
-    PlotSeries pt_series{name + ": path tracer, 1–64 spp", {}, {}, PlotSeries::Style::kLineAndMarkers};
+    PlotSeries pt_series{
+        name + ": path tracer, 1–64 spp", {}, {}, PlotSeries::Style::kLineAndMarkers};
     for (int spp : {1, 2, 4, 8, 16, 32, 64}) {
       pt.settings.samples_per_pixel = spp;
       const Result r = render(pt, threads, 7);
@@ -124,8 +140,11 @@ int main(int argc, char** argv) {
     plot.series.push_back(pt_series);
     Scene pm = make_study_scene(s, width, height, "photonmap");
     for (int spp : {1, 4}) {
-      PlotSeries pm_series{name + ": photon map, k 50, 2e4–5e5 photons, " + std::to_string(spp) + " spp",
-                           {}, {}, PlotSeries::Style::kLineAndMarkers};
+      PlotSeries pm_series{
+          name + ": photon map, k 50, 2e4–5e5 photons, " + std::to_string(spp) + " spp",
+          {},
+          {},
+          PlotSeries::Style::kLineAndMarkers};
       for (long long photons : {20000LL, 100000LL, 500000LL})
         for (int k : {20, 50, 100}) {
           pm.settings.samples_per_pixel = spp;

@@ -40,27 +40,34 @@ struct Totals {
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string scene_path = "examples/demo/scene.json", prepare_path = "examples/smoke-screen/prepare.json";
+  std::string scene_path = "examples/demo/scene.json",
+              prepare_path = "examples/smoke-screen/prepare.json";
   double t0 = 0, t1 = 30, step = 6;
   int threads = 0;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     const bool has_value = i + 1 < argc;
-    if (a == "--scene" && has_value) scene_path = argv[++i];
-    else if (a == "--prepare" && has_value) prepare_path = argv[++i];
-    else if (a == "--threads" && has_value) threads = std::atoi(argv[++i]);
+    if (a == "--scene" && has_value)
+      scene_path = argv[++i];
+    else if (a == "--prepare" && has_value)
+      prepare_path = argv[++i];
+    else if (a == "--threads" && has_value)
+      threads = std::atoi(argv[++i]);
     else if (a == "--times" && has_value) {
       if (std::sscanf(argv[++i], "%lf:%lf:%lf", &t0, &t1, &step) != 3 || !(step > 0) || t1 < t0) {
         std::fprintf(stderr, "bench_screening_demo: --times expects A:B:STEP\n");
         return 2;
       }
     } else {
-      std::fprintf(stderr, "usage: bench_screening_demo [--scene S] [--prepare P] [--times A:B:STEP] [--threads N]\n");
+      std::fprintf(stderr,
+                   "usage: bench_screening_demo [--scene S] [--prepare P] [--times A:B:STEP] "
+                   "[--threads N]\n");
       return 2;
     }
   }
   try {
-    const fs::path dir = fs::temp_directory_path() / ("obscura_bench_demo_" + std::to_string(::getpid()));
+    const fs::path dir =
+        fs::temp_directory_path() / ("obscura_bench_demo_" + std::to_string(::getpid()));
     fs::remove_all(dir);
     fs::create_directories(dir);
     // The scene refers to cloud/cloud.json and tank.obj beside it.
@@ -84,7 +91,8 @@ int main(int argc, char** argv) {
       for (const Sensor& sensor : scene.sensors) {
         const SensorImage image = render_sensor(scene, sensor, options);
         std::string label = sensor.name + " (";
-        for (std::size_t b = 0; b < sensor.bands.size(); ++b) label += (b ? "+" : "") + sensor.bands[b].name();
+        for (std::size_t b = 0; b < sensor.bands.size(); ++b)
+          label += (b ? "+" : "") + sensor.bands[b].name();
         label += ")";
         if (!per_band.count(label)) order.push_back(label);
         Totals& tot = per_band[label];
@@ -96,15 +104,20 @@ int main(int argc, char** argv) {
         ++tot.frames;
       }
     }
-    const int width = scene.sensors.front().camera.width(), height = scene.sensors.front().camera.height();
-    std::printf("scene %s: %d frames at t = %g…%g s, %d×%d px, method %s, %lld photons per node, %d threads\n",
-                scene_path.c_str(), frames, t0, t1, width, height, scene.settings.method.c_str(),
-                scene.settings.photon_map.photons_per_node, threads);
-    std::printf("preparation (once): %.2f s (concentrations %.2f, optics %.2f, keyframes %.2f), %zu keyframes\n",
-                prepare_s, report.seconds_concentrations, report.seconds_optics, report.seconds_keyframes,
-                report.keyframes.size());
-    std::printf("%-26s %10s %9s %9s %9s %9s\n", "sensor (band)", "s/frame", "staging", "tracing", "kd-tree",
-                "marching");
+    const int width = scene.sensors.front().camera.width(),
+              height = scene.sensors.front().camera.height();
+    std::printf(
+        "scene %s: %d frames at t = %g…%g s, %d×%d px, method %s, %lld photons per node, %d "
+        "threads\n",
+        scene_path.c_str(), frames, t0, t1, width, height, scene.settings.method.c_str(),
+        scene.settings.photon_map.photons_per_node, threads);
+    std::printf(
+        "preparation (once): %.2f s (concentrations %.2f, optics %.2f, keyframes %.2f), %zu "
+        "keyframes\n",
+        prepare_s, report.seconds_concentrations, report.seconds_optics, report.seconds_keyframes,
+        report.keyframes.size());
+    std::printf("%-26s %10s %9s %9s %9s %9s\n", "sensor (band)", "s/frame", "staging", "tracing",
+                "kd-tree", "marching");
     Totals all;
     for (const std::string& label : order) {
       const Totals& t = per_band[label];
@@ -117,8 +130,9 @@ int main(int argc, char** argv) {
       all.build += t.build;
       all.marching += t.marching;
     }
-    std::printf("%-26s %10.3f %8.1f%% %8.1f%% %8.1f%% %8.1f%%\n", "all sensors", all.total() / frames,
-                100 * all.staging / all.total(), 100 * all.tracing / all.total(), 100 * all.build / all.total(),
+    std::printf("%-26s %10.3f %8.1f%% %8.1f%% %8.1f%% %8.1f%%\n", "all sensors",
+                all.total() / frames, 100 * all.staging / all.total(),
+                100 * all.tracing / all.total(), 100 * all.build / all.total(),
                 100 * all.marching / all.total());
     std::printf("whole run: preparation %.1f s + frames %.1f s\n", prepare_s, all.total());
     fs::remove_all(dir);

@@ -18,9 +18,14 @@ int main(int argc, char** argv) {
   int resolution = 256, samples = 2;
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string a = argv[i];
-    if (a == "--resolution") resolution = std::atoi(argv[i + 1]);
-    else if (a == "--samples") samples = std::atoi(argv[i + 1]);
-    else { std::fprintf(stderr, "unknown option %s\n", a.c_str()); return 2; }
+    if (a == "--resolution")
+      resolution = std::atoi(argv[i + 1]);
+    else if (a == "--samples")
+      samples = std::atoi(argv[i + 1]);
+    else {
+      std::fprintf(stderr, "unknown option %s\n", a.c_str());
+      return 2;
+    }
   }
   GaussianPuffSpec spec;
   spec.resolution = resolution;
@@ -55,8 +60,8 @@ int main(int argc, char** argv) {
   const double resampled = seconds_since(t0);
   std::printf("staging benchmark (%d spectral samples, %d channels per voxel)\n", samples,
               a.channel_count());
-  std::printf("  same layout   %d^3: %.1f ms per frame (%.1f M voxels/s)\n", resolution,
-              1e3 * same, a.dims().count() / same / 1e6);
+  std::printf("  same layout   %d^3: %.1f ms per frame (%.1f M voxels/s)\n", resolution, 1e3 * same,
+              a.dims().count() / same / 1e6);
   std::printf("  resampled     %d^3 + %d^3 -> %dx%dx%d: %.1f ms per frame\n", resolution,
               resolution / 2, u.dims().nx, u.dims().ny, u.dims().nz, 1e3 * resampled);
   std::printf("  (checksum %g)\n", checksum);

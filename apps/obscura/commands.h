@@ -2,10 +2,9 @@
 // Subcommands of the `obscura` tool. Each registers its options on the parent
 // app and returns the function that runs it (exit status). Commands are thin:
 // they parse, call the library and print (STYLE.md §16).
+#include <CLI/CLI.hpp>
 #include <functional>
 #include <string>
-
-#include <CLI/CLI.hpp>
 
 namespace obscura::cli {
 

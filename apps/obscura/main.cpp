@@ -1,8 +1,8 @@
 // obscura: what a visible or infrared sensor sees through obscurant clouds.
+#include <fmt/format.h>
+
 #include <iostream>
 #include <map>
-
-#include <fmt/format.h>
 
 #include "commands.h"
 #include "obscura/core/error.h"

@@ -1,8 +1,8 @@
 // `obscura make-puff`: writes a procedural Gaussian smoke puff as a cloud keyframe.
-#include <iostream>
-
 #include <fmt/format.h>
 #include <fmt/ranges.h>
+
+#include <iostream>
 #include <nlohmann/json.hpp>
 
 #include "commands.h"
@@ -24,7 +24,9 @@ Command add_make_puff_command(CLI::App& app, const Invocation& invocation) {
   };
   auto o = std::make_shared<Options>();
   cmd->add_option("output", o->output, "Output .vdb file")->required();
-  cmd->add_option("--center", o->center, "Centre x,y,z in metres")->delimiter(',')->expected(3)
+  cmd->add_option("--center", o->center, "Centre x,y,z in metres")
+      ->delimiter(',')
+      ->expected(3)
       ->capture_default_str();
   cmd->add_option("--radius", o->spec.radius_m, "Gaussian standard deviation s, metres")
       ->capture_default_str();
@@ -33,17 +35,21 @@ Command add_make_puff_command(CLI::App& app, const Invocation& invocation) {
   cmd->add_option("--resolution", o->spec.resolution, "Voxels along each axis")
       ->capture_default_str();
   cmd->add_option("--wavelengths", o->spec.wavelengths_um, "Spectral samples, micrometres")
-      ->delimiter(',')->capture_default_str();
+      ->delimiter(',')
+      ->capture_default_str();
   cmd->add_option("--sigma-a", o->spec.peak_sigma_a, "Peak absorption coefficient per sample, 1/m")
-      ->delimiter(',')->capture_default_str();
+      ->delimiter(',')
+      ->capture_default_str();
   cmd->add_option("--sigma-s", o->spec.peak_sigma_s, "Peak scattering coefficient per sample, 1/m")
-      ->delimiter(',')->capture_default_str();
+      ->delimiter(',')
+      ->capture_default_str();
   cmd->add_option("--g", o->spec.g, "Henyey-Greenstein asymmetry per sample")
-      ->delimiter(',')->capture_default_str();
+      ->delimiter(',')
+      ->capture_default_str();
   cmd->add_option("--ambient", o->spec.ambient_temperature_k, "Ambient temperature, K")
       ->capture_default_str();
-  cmd->add_option("--excess", o->spec.temperature_excess_k,
-                  "Temperature excess at the centre, K")->capture_default_str();
+  cmd->add_option("--excess", o->spec.temperature_excess_k, "Temperature excess at the centre, K")
+      ->capture_default_str();
   cmd->add_option("--time", o->time_s, "Keyframe time, seconds after activation")
       ->capture_default_str();
   cmd->add_flag("--json", o->json, "Print a JSON summary");

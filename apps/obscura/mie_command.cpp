@@ -1,20 +1,20 @@
 // `obscura mie`: Lorenz–Mie efficiencies of one homogeneous sphere, given its
 // size parameter, or its radius and the wavelength (docs/optics.md).
+#include <fmt/format.h>
+
 #include <charconv>
 #include <cmath>
 #include <complex>
 #include <iostream>
+#include <nlohmann/json.hpp>
 #include <numbers>
 #include <optional>
 #include <string>
 
-#include <fmt/format.h>
-#include <nlohmann/json.hpp>
-
 #include "commands.h"
-#include "option_parsing.h"
 #include "obscura/core/error.h"
 #include "obscura/optics/mie.h"
+#include "option_parsing.h"
 
 namespace obscura::cli {
 namespace {

@@ -12,9 +12,9 @@
 #include <vector>
 
 #include "commands.h"
-#include "option_parsing.h"
 #include "obscura/core/error.h"
 #include "obscura/optics/material.h"
+#include "option_parsing.h"
 
 namespace obscura::cli {
 namespace {

@@ -1,11 +1,11 @@
 #pragma once
 // Number options taken as text and converted here, so that every bad value is
 // an InputError naming its option (exit status 1), not a CLI11 conversion error.
+#include <fmt/format.h>
+
 #include <charconv>
 #include <cmath>
 #include <string>
-
-#include <fmt/format.h>
 
 #include "obscura/core/error.h"
 

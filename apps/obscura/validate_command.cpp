@@ -1,11 +1,11 @@
 // `obscura validate`: canonical cases with known answers, run through the same
 // transport code that renders images; a table (or JSON) and a non-zero exit on
 // any failure.
-#include <iostream>
-#include <optional>
-
 #include <fmt/format.h>
+
+#include <iostream>
 #include <nlohmann/json.hpp>
+#include <optional>
 
 #include "commands.h"
 #include "obscura/core/data_directory.h"
@@ -36,13 +36,13 @@ Command add_validate_command(CLI::App& app) {
     bool json = false;
   };
   auto o = std::make_shared<Options>();
-  cmd->add_option("case", o->name, "slab | furnace | equilibrium | emitting-slab | single-scatter | "
-                                   "puff-transmittance | all")
+  cmd->add_option("case", o->name,
+                  "slab | furnace | equilibrium | emitting-slab | single-scatter | "
+                  "puff-transmittance | all")
       ->required()
       ->check(CLI::IsMember({"slab", "furnace", "equilibrium", "emitting-slab", "single-scatter",
                              "puff-transmittance", "all"}));
-  cmd->add_option("--tau", o->tau,
-                  "Optical thickness (default 1; single-scatter 0.002)");
+  cmd->add_option("--tau", o->tau, "Optical thickness (default 1; single-scatter 0.002)");
   cmd->add_option("--g", o->g, "Henyey-Greenstein asymmetry (default 0.5)");
   cmd->add_option("--albedo", o->albedo,
                   "Single-scattering albedo (default: slab 0.9, equilibrium 0.8)");
@@ -61,12 +61,14 @@ Command add_validate_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--photons", o->photon_map.photons_per_node, "photonmap: photons launched")
       ->capture_default_str();
-  cmd->add_option("--k", o->photon_map.k, "photonmap: nearest photons per estimate")->capture_default_str();
+  cmd->add_option("--k", o->photon_map.k, "photonmap: nearest photons per estimate")
+      ->capture_default_str();
   cmd->add_option("--max-radius", o->photon_map.max_radius_m, "photonmap: search radius cap, m")
       ->capture_default_str();
   cmd->add_option("--step", o->photon_map.step_m, "photonmap: longest marching segment, m")
       ->capture_default_str();
-  cmd->add_option("--form", o->form, "photonmap: hybrid (shadow rays for single scattering) or pure")
+  cmd->add_option("--form", o->form,
+                  "photonmap: hybrid (shadow rays for single scattering) or pure")
       ->check(CLI::IsMember({"hybrid", "pure"}))
       ->capture_default_str();
   cmd->add_option("--reference", o->reference,
@@ -80,108 +82,121 @@ Command add_validate_command(CLI::App& app) {
   cmd->add_option("--threads", o->threads, "Threads (0: all cores); results do not depend on it")
       ->capture_default_str();
   cmd->add_flag("--json", o->json, "Print a JSON array of rows instead of a table");
-  return {cmd, [o]() {
-            const double g = o->g.value_or(0.5);
-            ValidationOptions options;
-            options.samples = o->samples.value_or(0);
-            options.seed = o->seed;
-            options.threads = o->threads;
-            options.method = o->method;
-            options.photon_map = o->photon_map;
-            options.photon_map.pure = o->form == "pure";
-            const bool photonmap = o->method == "photonmap";
-            if (photonmap) {
-              if (o->photon_map.photons_per_node < 1) throw InputError("", "--photons", "must be at least 1");
-              if (o->photon_map.k < 1) throw InputError("", "--k", "must be at least 1");
-              if (!(o->photon_map.max_radius_m > 0)) throw InputError("", "--max-radius", "must be > 0 m");
-              if (!(o->photon_map.step_m > 0)) throw InputError("", "--step", "must be > 0 m");
-            }
-            std::vector<ValidationRow> rows;
-            auto add = [&](std::vector<ValidationRow> r) { rows.insert(rows.end(), r.begin(), r.end()); };
-            const bool all = o->name == "all";
-            std::optional<SlabReference> slab_reference;
-            if (all || o->name == "slab") {
-              SlabSpec slab;
-              slab.albedo = o->albedo.value_or(0.9);
-              slab.tau = o->tau.value_or(1.0);
-              slab.g = g;
-              slab.incidence = o->incidence == "diffuse" ? SlabIncidence::kDiffuse : SlabIncidence::kCollimated;
-              if (o->incidence == "normal" && o->mu0 != 1.0)
-                throw InputError("", "--mu0", "give --incidence collimated with --mu0 (normal means mu0 = 1)");
-              slab.mu0 = o->mu0;
-              slab.half_width_m = o->half_width.value_or(photonmap ? 20.0 : 1e6);
-              const std::string table = o->reference.empty()
-                                            ? (data_directory() / "validation" / "slab_reference.csv").string()
-                                            : o->reference;
-              slab_reference = find_slab_reference(table, slab);
-              add(validate_slab(slab, slab_reference, options));
-            }
-            if (all || o->name == "furnace") add(validate_furnace(o->tau.value_or(1.0), g, options));
-            if (all || o->name == "equilibrium")
-              add(validate_equilibrium(o->albedo.value_or(0.8), o->tau.value_or(1.0), g, o->temperature,
-                                       options));
-            if (all || o->name == "emitting-slab")
-              add(validate_emitting_slab(o->tau.value_or(1.0), o->temperature, options));
-            if (all || o->name == "single-scatter")
-              add(validate_single_scatter(o->tau.value_or(0.002), g, options));
-            if (all || o->name == "puff-transmittance") add(validate_puff_transmittance(options));
-            bool ok = true;
-            nlohmann::json out = nlohmann::json::array();
-            auto number_or_null = [](bool judged, double v) { return judged ? nlohmann::json(v) : nlohmann::json(); };
-            for (const auto& r : rows) {
-              ok = ok && (!r.judged || r.pass);
-              out.push_back({{"case", r.case_name}, {"quantity", r.quantity},
-                             {"reference", number_or_null(r.judged, r.reference)},
-                             {"obtained", r.obtained},
-                             {"relative_error", number_or_null(r.judged, r.relative_error())},
-                             {"stderr", r.stderr_mean}, {"tolerance", r.tolerance},
-                             {"samples", r.samples},
-                             {"pass", r.judged ? nlohmann::json(r.pass) : nlohmann::json()}});
-            }
-            if (o->json && o->name == "slab") {
-              // The slab's own keys (R, T, T_direct with standard errors) and its rows.
-              nlohmann::json slab = {{"case", rows[0].case_name}};
-              for (const auto& r : rows) {
-                slab[r.quantity] = r.obtained;
-                slab[r.quantity + "_stderr"] = r.stderr_mean;
-              }
-              slab["reference"] = slab_reference
-                                      ? nlohmann::json{{"R", slab_reference->r},
-                                                       {"T", slab_reference->t},
-                                                       {"T_direct", slab_reference->t_direct},
-                                                       {"source", slab_reference->source}}
-                                      : nlohmann::json();
-              slab["rows"] = out;
-              slab["pass"] = ok;
-              std::cout << slab.dump(2) << "\n";
-            } else if (o->json) {
-              std::cout << out.dump(2) << "\n";
-            } else {
-              std::cout << fmt::format("{:<44} {:<18} {:>12} {:>12} {:>10} {:>10} {:>9}  {}\n", "case",
-                                       "quantity", "reference", "obtained", "rel.error", "stderr",
-                                       "samples", "result");
-              for (const auto& r : rows) {
-                if (r.judged)
-                  std::cout << fmt::format("{:<44} {:<18} {:>12.6g} {:>12.6g} {:>10.2e} {:>10.2e} {:>9}  {}\n",
-                                           r.case_name, r.quantity, r.reference, r.obtained,
-                                           r.relative_error(), r.stderr_mean, r.samples,
-                                           r.pass ? "pass" : "FAIL");
-                else
-                  std::cout << fmt::format("{:<44} {:<18} {:>12} {:>12.6g} {:>10} {:>10.2e} {:>9}  {}\n",
-                                           r.case_name, r.quantity, "-", r.obtained, "-", r.stderr_mean,
-                                           r.samples, "no reference");
-              }
-              if (slab_reference && !slab_reference->source.empty())
-                std::cout << "slab reference: " << slab_reference->source << "\n";
-              const auto judged = std::count_if(rows.begin(), rows.end(), [](auto& r) { return r.judged; });
-              std::cout << fmt::format("{} of {} passed (pass: |difference| <= max(3 stderr, tolerance) "
-                                       "and stderr <= tolerance)\n",
-                                       std::count_if(rows.begin(), rows.end(),
-                                                     [](auto& r) { return r.judged && r.pass; }),
-                                       judged);
-            }
-            return ok ? 0 : 1;
-          }};
+  return {
+      cmd, [o]() {
+        const double g = o->g.value_or(0.5);
+        ValidationOptions options;
+        options.samples = o->samples.value_or(0);
+        options.seed = o->seed;
+        options.threads = o->threads;
+        options.method = o->method;
+        options.photon_map = o->photon_map;
+        options.photon_map.pure = o->form == "pure";
+        const bool photonmap = o->method == "photonmap";
+        if (photonmap) {
+          if (o->photon_map.photons_per_node < 1)
+            throw InputError("", "--photons", "must be at least 1");
+          if (o->photon_map.k < 1) throw InputError("", "--k", "must be at least 1");
+          if (!(o->photon_map.max_radius_m > 0))
+            throw InputError("", "--max-radius", "must be > 0 m");
+          if (!(o->photon_map.step_m > 0)) throw InputError("", "--step", "must be > 0 m");
+        }
+        std::vector<ValidationRow> rows;
+        auto add = [&](std::vector<ValidationRow> r) {
+          rows.insert(rows.end(), r.begin(), r.end());
+        };
+        const bool all = o->name == "all";
+        std::optional<SlabReference> slab_reference;
+        if (all || o->name == "slab") {
+          SlabSpec slab;
+          slab.albedo = o->albedo.value_or(0.9);
+          slab.tau = o->tau.value_or(1.0);
+          slab.g = g;
+          slab.incidence =
+              o->incidence == "diffuse" ? SlabIncidence::kDiffuse : SlabIncidence::kCollimated;
+          if (o->incidence == "normal" && o->mu0 != 1.0)
+            throw InputError("", "--mu0",
+                             "give --incidence collimated with --mu0 (normal means mu0 = 1)");
+          slab.mu0 = o->mu0;
+          slab.half_width_m = o->half_width.value_or(photonmap ? 20.0 : 1e6);
+          const std::string table =
+              o->reference.empty()
+                  ? (data_directory() / "validation" / "slab_reference.csv").string()
+                  : o->reference;
+          slab_reference = find_slab_reference(table, slab);
+          add(validate_slab(slab, slab_reference, options));
+        }
+        if (all || o->name == "furnace") add(validate_furnace(o->tau.value_or(1.0), g, options));
+        if (all || o->name == "equilibrium")
+          add(validate_equilibrium(o->albedo.value_or(0.8), o->tau.value_or(1.0), g, o->temperature,
+                                   options));
+        if (all || o->name == "emitting-slab")
+          add(validate_emitting_slab(o->tau.value_or(1.0), o->temperature, options));
+        if (all || o->name == "single-scatter")
+          add(validate_single_scatter(o->tau.value_or(0.002), g, options));
+        if (all || o->name == "puff-transmittance") add(validate_puff_transmittance(options));
+        bool ok = true;
+        nlohmann::json out = nlohmann::json::array();
+        auto number_or_null = [](bool judged, double v) {
+          return judged ? nlohmann::json(v) : nlohmann::json();
+        };
+        for (const auto& r : rows) {
+          ok = ok && (!r.judged || r.pass);
+          out.push_back({{"case", r.case_name},
+                         {"quantity", r.quantity},
+                         {"reference", number_or_null(r.judged, r.reference)},
+                         {"obtained", r.obtained},
+                         {"relative_error", number_or_null(r.judged, r.relative_error())},
+                         {"stderr", r.stderr_mean},
+                         {"tolerance", r.tolerance},
+                         {"samples", r.samples},
+                         {"pass", r.judged ? nlohmann::json(r.pass) : nlohmann::json()}});
+        }
+        if (o->json && o->name == "slab") {
+          // The slab's own keys (R, T, T_direct with standard errors) and its rows.
+          nlohmann::json slab = {{"case", rows[0].case_name}};
+          for (const auto& r : rows) {
+            slab[r.quantity] = r.obtained;
+            slab[r.quantity + "_stderr"] = r.stderr_mean;
+          }
+          slab["reference"] = slab_reference
+                                  ? nlohmann::json{{"R", slab_reference->r},
+                                                   {"T", slab_reference->t},
+                                                   {"T_direct", slab_reference->t_direct},
+                                                   {"source", slab_reference->source}}
+                                  : nlohmann::json();
+          slab["rows"] = out;
+          slab["pass"] = ok;
+          std::cout << slab.dump(2) << "\n";
+        } else if (o->json) {
+          std::cout << out.dump(2) << "\n";
+        } else {
+          std::cout << fmt::format("{:<44} {:<18} {:>12} {:>12} {:>10} {:>10} {:>9}  {}\n", "case",
+                                   "quantity", "reference", "obtained", "rel.error", "stderr",
+                                   "samples", "result");
+          for (const auto& r : rows) {
+            if (r.judged)
+              std::cout << fmt::format(
+                  "{:<44} {:<18} {:>12.6g} {:>12.6g} {:>10.2e} {:>10.2e} {:>9}  {}\n", r.case_name,
+                  r.quantity, r.reference, r.obtained, r.relative_error(), r.stderr_mean, r.samples,
+                  r.pass ? "pass" : "FAIL");
+            else
+              std::cout << fmt::format(
+                  "{:<44} {:<18} {:>12} {:>12.6g} {:>10} {:>10.2e} {:>9}  {}\n", r.case_name,
+                  r.quantity, "-", r.obtained, "-", r.stderr_mean, r.samples, "no reference");
+          }
+          if (slab_reference && !slab_reference->source.empty())
+            std::cout << "slab reference: " << slab_reference->source << "\n";
+          const auto judged =
+              std::count_if(rows.begin(), rows.end(), [](auto& r) { return r.judged; });
+          std::cout << fmt::format(
+              "{} of {} passed (pass: |difference| <= max(3 stderr, tolerance) "
+              "and stderr <= tolerance)\n",
+              std::count_if(rows.begin(), rows.end(), [](auto& r) { return r.judged && r.pass; }),
+              judged);
+        }
+        return ok ? 0 : 1;
+      }};
 }
 
 }  // namespace obscura::cli

@@ -108,8 +108,8 @@ ScreeningMetrics row(double t, const std::string& band, double fraction, double 
 TEST(SummarizeScreening, GroupsBySensorAndBandInTimeOrder) {
   // Frames out of order, two bands interleaved.
   const std::vector<ScreeningMetrics> rows = {row(2, "mwir", 1.0, 0.01), row(0, "mwir", 0.0, 1.0),
-                                              row(0, "lwir", 0.0, 1.0), row(1, "mwir", 0.5, 0.4),
-                                              row(2, "lwir", 0.2, 0.6), row(1, "lwir", 0.1, 0.5)};
+                                              row(0, "lwir", 0.0, 1.0),  row(1, "mwir", 0.5, 0.4),
+                                              row(2, "lwir", 0.2, 0.6),  row(1, "lwir", 0.1, 0.5)};
   const auto s = summarize_screening(rows, MetricsSettings{}, 0.25);
   ASSERT_EQ(s.size(), 2u);
   EXPECT_EQ(s[0].band.name(), "mwir");
@@ -126,7 +126,9 @@ TEST(SummarizeScreening, GroupsBySensorAndBandInTimeOrder) {
 
 // Band radiance of a blackbody from the high-accuracy quadrature (relative
 // error < 1e-9), not the renderer's 8-node one.
-double band_planck(const Band& band, double t) { return BandQuadrature::accurate(band).blackbody_radiance(t); }
+double band_planck(const Band& band, double t) {
+  return BandQuadrature::accurate(band).blackbody_radiance(t);
+}
 
 // A blackbody box target at 330 K on a blackbody ground at 290 K, black sky,
 // seen from above at 45° (every pixel sees the ground or the box).
@@ -138,8 +140,10 @@ Scene target_scene() {
   s.camera = PinholeCamera({0, -20, 20}, {0, 0, 1}, {0, 0, 1}, 20, 48, 36);
   s.bands = {Band::preset("mwir"), Band::preset("lwir")};
   scene.sensors.push_back(s);
-  scene.surfaces.push_back(std::make_unique<GroundPlane>("ground", SurfaceMaterial{kGroundK, 1.0}, 0.0));
-  auto box = std::make_unique<BoxSurface>("tank", SurfaceMaterial{kTargetK, 1.0}, BBox3({-2, -2, 0}, {2, 2, 2}));
+  scene.surfaces.push_back(
+      std::make_unique<GroundPlane>("ground", SurfaceMaterial{kGroundK, 1.0}, 0.0));
+  auto box = std::make_unique<BoxSurface>("tank", SurfaceMaterial{kTargetK, 1.0},
+                                          BBox3({-2, -2, 0}, {2, 2, 2}));
   box->set_target(true);
   scene.surfaces.push_back(std::move(box));
   scene.settings.spectral_nodes_per_band = 8;
@@ -150,7 +154,8 @@ std::vector<ScreeningMetrics> render_metrics(const Scene& scene) {
   RenderOptions options;
   options.threads = 2;
   const SensorImage image = render_sensor(scene, scene.sensors[0], options);
-  const TargetMask mask = compute_target_mask(scene, scene.sensors[0], scene.metrics.background_margin_px);
+  const TargetMask mask =
+      compute_target_mask(scene, scene.sensors[0], scene.metrics.background_margin_px);
   return screening_metrics(image, mask, scene.metrics, scene.settings.spectral_nodes_per_band, 1.5);
 }
 
@@ -191,7 +196,8 @@ TEST(ScreeningMetrics, NoCloudThroughTheAtmosphereGivesTheSurfacesApparentDiffer
   scene.atmosphere.temperature_k = 270.0;
   scene.atmosphere.extinction_per_m = {{"*", 5e-3}};
   const auto rows = render_metrics(scene);
-  const TargetMask mask = compute_target_mask(scene, scene.sensors[0], scene.metrics.background_margin_px);
+  const TargetMask mask =
+      compute_target_mask(scene, scene.sensors[0], scene.metrics.background_margin_px);
   const PinholeCamera& cam = scene.sensors[0].camera;
   ASSERT_EQ(rows.size(), 2u);
   for (const ScreeningMetrics& m : rows) {
@@ -208,7 +214,8 @@ TEST(ScreeningMetrics, NoCloudThroughTheAtmosphereGivesTheSurfacesApparentDiffer
         ASSERT_TRUE(intersect_surfaces(scene.surfaces, cam.generate_ray(x + 0.5, y + 0.5), 0.0,
                                        std::numeric_limits<double>::infinity(), hit));
         const double tau = std::exp(-5e-3 * hit.t);
-        const double surface = q.blackbody_radiance(label == MaskLabel::kTarget ? kTargetK : kGroundK);
+        const double surface =
+            q.blackbody_radiance(label == MaskLabel::kTarget ? kTargetK : kGroundK);
         const double l = tau * surface + (1.0 - tau) * air;
         (label == MaskLabel::kTarget ? sum_t : sum_b) += l;
         ++(label == MaskLabel::kTarget ? n_t : n_b);
@@ -230,9 +237,9 @@ TEST(ScreeningMetrics, OpaqueCloudScreensEveryTargetPixel) {
   Scene scene = target_scene();
   // σa = 10 /m over a box that holds the target with 3 m to spare above it:
   // every line of sight to the target crosses τ > 30.
-  scene.medium = std::make_shared<HomogeneousMedium>(BBox3({-5, -5, 0}, {5, 5, 5}), std::vector<double>{3, 13},
-                                                     std::vector<double>{10, 10}, std::vector<double>{0, 0},
-                                                     std::vector<double>{0, 0}, 280.0);
+  scene.medium = std::make_shared<HomogeneousMedium>(
+      BBox3({-5, -5, 0}, {5, 5, 5}), std::vector<double>{3, 13}, std::vector<double>{10, 10},
+      std::vector<double>{0, 0}, std::vector<double>{0, 0}, 280.0);
   for (const ScreeningMetrics& m : render_metrics(scene)) {
     SCOPED_TRACE(m.band.name());
     EXPECT_EQ(m.screened_fraction, 1.0);

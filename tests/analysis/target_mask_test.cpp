@@ -70,7 +70,8 @@ TEST(TargetMask, TheFirstSurfaceHitDecides) {
   // A non-target wall in front of the target's left half (x < 0), and a
   // ground behind everything: neither is target.
   scene.surfaces.push_back(box("wall", {-3, -3, -3}, {0, -2, 3}, false));
-  scene.surfaces.push_back(std::make_unique<GroundPlane>("ground", SurfaceMaterial{290.0, 1.0}, -1.5));
+  scene.surfaces.push_back(
+      std::make_unique<GroundPlane>("ground", SurfaceMaterial{290.0, 1.0}, -1.5));
   const TargetMask m = compute_target_mask(scene, scene.sensors[0], 8);
   EXPECT_EQ(m.target_pixels, 200);
   EXPECT_EQ(m.x0, 50);

@@ -1,20 +1,19 @@
 // End-to-end tests of the `obscura` tool: exit status, messages that name the
 // file and the field, machine-readable output, and no partial output on error.
 #include <gtest/gtest.h>
+#include <openvdb/openvdb.h>
 
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <sstream>
 
-#include <nlohmann/json.hpp>
-#include <openvdb/openvdb.h>
-
-#include "support/cli_runner.h"
-#include "support/temp_dir_test.h"
 #include "obscura/io/vdb_keyframe.h"
 #include "obscura/medium/gaussian_puff.h"
+#include "support/cli_runner.h"
+#include "support/temp_dir_test.h"
 
 namespace fs = std::filesystem;
 
@@ -31,8 +30,13 @@ class CliTest : public testing::TempDirTest {
   }
   static nlohmann::json scene_with_vdb(const std::string& vdb) {
     return {{"sensors",
-             {{{"name", "ir"}, {"position", {0, -30, 3}}, {"look_at", {0, 0, 3}}, {"fov_deg", 30},
-               {"width", 24}, {"height", 16}, {"bands", {"mwir", "lwir"}}}}},
+             {{{"name", "ir"},
+               {"position", {0, -30, 3}},
+               {"look_at", {0, 0, 3}},
+               {"fov_deg", 30},
+               {"width", 24},
+               {"height", 16},
+               {"bands", {"mwir", "lwir"}}}}},
             {"clouds", {{{"type", "vdb"}, {"file", vdb}}}},
             {"surfaces", {{{"type", "ground"}, {"temperature", 290}}}},
             {"sky", {{"temperature", 250}}}};
@@ -65,7 +69,8 @@ class CliTest : public testing::TempDirTest {
     out.write(*grids, *meta);
   }
   // The render must fail, name `file` and `field`, and leave no file in the output folder.
-  void expect_render_error(const fs::path& scene, const std::string& file, const std::string& field) {
+  void expect_render_error(const fs::path& scene, const std::string& file,
+                           const std::string& field) {
     const auto out_dir = dir_ / "out";
     const testing::CliResult r = run("render " + scene.string() + " -o " + out_dir.string());
     EXPECT_NE(r.status, 0);
@@ -124,7 +129,8 @@ TEST_F(CliTest, RenderWritesImagesAndSummary) {
   write_puff("puff.vdb");
   const auto scene = write_scene(scene_with_vdb("puff.vdb"));
   const auto out = dir_ / "render";
-  const testing::CliResult r = run("render " + scene.string() + " -o " + out.string() + " --threads 2 --json");
+  const testing::CliResult r =
+      run("render " + scene.string() + " -o " + out.string() + " --threads 2 --json");
   ASSERT_EQ(r.status, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
   EXPECT_EQ(j["sensors"][0]["bands"].size(), 2u);
@@ -154,8 +160,12 @@ TEST_F(CliTest, WrongTypeFails) {
 
 TEST_F(CliTest, NegativeCoefficientFails) {
   auto doc = scene_with_vdb("puff.vdb");
-  doc["clouds"] = {{{"type", "homogeneous"}, {"min", {-1, -1, 0}}, {"max", {1, 1, 2}},
-                    {"wavelengths_um", {10}}, {"sigma_a", {-0.1}}, {"sigma_s", {0}},
+  doc["clouds"] = {{{"type", "homogeneous"},
+                    {"min", {-1, -1, 0}},
+                    {"max", {1, 1, 2}},
+                    {"wavelengths_um", {10}},
+                    {"sigma_a", {-0.1}},
+                    {"sigma_s", {0}},
                     {"temperature", 300}}};
   expect_render_error(write_scene(doc), "scene.json", "/clouds/0/sigma_a[0]");
 }
@@ -165,7 +175,8 @@ TEST_F(CliTest, NegativeCoefficientInKeyframeFails) {
   tamper(vdb, [](openvdb::GridPtrVec& grids, openvdb::MetaMap&) {
     for (auto& g : grids)
       if (g->getName() == "sigma_s_001")
-        openvdb::gridPtrCast<openvdb::FloatGrid>(g)->tree().setValue(openvdb::Coord(8, 8, 8), -1.0f);
+        openvdb::gridPtrCast<openvdb::FloatGrid>(g)->tree().setValue(openvdb::Coord(8, 8, 8),
+                                                                     -1.0f);
   });
   expect_render_error(write_scene(scene_with_vdb("puff.vdb")), "puff.vdb", "sigma_s_001");
 }
@@ -176,7 +187,7 @@ TEST_F(CliTest, NaNInKeyframeFails) {
     for (auto& g : grids)
       if (g->getName() == "temperature")
         openvdb::gridPtrCast<openvdb::FloatGrid>(g)->tree().setValue(openvdb::Coord(3, 4, 5),
-                                                                    std::nanf(""));
+                                                                     std::nanf(""));
   });
   expect_render_error(write_scene(scene_with_vdb("puff.vdb")), "puff.vdb", "temperature");
 }

@@ -3,11 +3,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <nlohmann/json.hpp>
 #include <numbers>
 #include <set>
 #include <string>
-
-#include <nlohmann/json.hpp>
 
 #include "support/cli_runner.h"
 #include "support/temp_dir_test.h"

@@ -5,7 +5,6 @@
 
 #include <algorithm>
 #include <fstream>
-
 #include <nlohmann/json.hpp>
 
 #include "support/cli_runner.h"
@@ -24,25 +23,37 @@ class RenderMetricsTest : public testing::TempDirTest {
   fs::path write_scene(bool cloud, bool target = true, nlohmann::json look_at = {0, 0, 1}) {
     nlohmann::json scene = {
         {"sensors",
-         {{{"name", "ir"}, {"position", {0, -20, 20}}, {"look_at", look_at}, {"fov_deg", 20},
-           {"width", 32}, {"height", 24},
+         {{{"name", "ir"},
+           {"position", {0, -20, 20}},
+           {"look_at", look_at},
+           {"fov_deg", 20},
+           {"width", 32},
+           {"height", 24},
            {"bands", {{{"name", "swir"}, {"min_um", 1.5}, {"max_um", 2.5}}, "mwir", "lwir"}}}}},
         {"surfaces",
          {{{"type", "ground"}, {"temperature", 290}},
-          {{"type", "box"}, {"name", "tank"}, {"min", {-2, -2, 0}}, {"max", {2, 2, 2}},
-           {"temperature", 330}, {"target", target}}}},
+          {{"type", "box"},
+           {"name", "tank"},
+           {"min", {-2, -2, 0}},
+           {"max", {2, 2, 2}},
+           {"temperature", 330},
+           {"target", target}}}},
         {"metrics", {{"background_margin_px", 4}}}};
     if (cloud)
-      scene["clouds"] = {{{"type", "homogeneous"}, {"min", {-5, -5, 0}}, {"max", {5, 5, 5}},
-                          {"wavelengths_um", {1.5, 13}}, {"sigma_a", {10, 10}}, {"sigma_s", {0, 0}},
+      scene["clouds"] = {{{"type", "homogeneous"},
+                          {"min", {-5, -5, 0}},
+                          {"max", {5, 5, 5}},
+                          {"wavelengths_um", {1.5, 13}},
+                          {"sigma_a", {10, 10}},
+                          {"sigma_s", {0, 0}},
                           {"temperature", 280}}};
     const auto p = dir_ / "scene.json";
     std::ofstream(p) << scene.dump(2);
     return p;
   }
   testing::CliResult render(const fs::path& scene, const fs::path& out, const std::string& extra) {
-    return testing::run_cli("render " + scene.string() + " -o " + out.string() + " --threads 2 " + extra,
-                            dir_);
+    return testing::run_cli(
+        "render " + scene.string() + " -o " + out.string() + " --threads 2 " + extra, dir_);
   }
 };
 
@@ -51,9 +62,10 @@ TEST_F(RenderMetricsTest, SequenceWritesMetricsPlotsMaskAndContactSheet) {
   const auto r = render(write_scene(true), out, "--time 0:2:1");
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_EQ(r.err.find("warning"), std::string::npos) << r.err;
-  for (const char* f : {"metrics.csv", "metrics.json", "metrics_transmittance.png",
-                        "metrics_screened_fraction.png", "metrics_contrast.png", "metrics_delta_t.png",
-                        "target_mask_ir.png", "contact_sheet.png", "time_series.csv", "summary.json"})
+  for (const char* f :
+       {"metrics.csv", "metrics.json", "metrics_transmittance.png", "metrics_screened_fraction.png",
+        "metrics_contrast.png", "metrics_delta_t.png", "target_mask_ir.png", "contact_sheet.png",
+        "time_series.csv", "summary.json"})
     EXPECT_TRUE(fs::exists(out / f)) << f;
 
   const std::string csv = testing::read_text_file(out / "metrics.csv");
@@ -115,7 +127,8 @@ TEST_F(RenderMetricsTest, TargetOutOfViewWarnsOnceAndWritesNulls) {
   const auto out = dir_ / "out";
   const auto r = render(write_scene(true, true, {0, -40, 20}), out, "--time 0:1:1");
   ASSERT_EQ(r.status, 0) << r.err;
-  EXPECT_NE(r.err.find("warning: no target pixel in view of sensor ir"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("warning: no target pixel in view of sensor ir"), std::string::npos)
+      << r.err;
   const auto j = nlohmann::json::parse(testing::read_text_file(out / "metrics.json"));
   EXPECT_EQ(j["targets"][0]["target_pixels"], 0);
   EXPECT_TRUE(j["series"][0]["time_to_screen_s"].is_null());

@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cstring>
-
 #include <nlohmann/json.hpp>
 
 #include "obscura/io/exr_writer.h"
@@ -38,18 +37,27 @@ class RenderSequenceTest : public testing::TempDirTest {
       write_cloud_keyframe(dir_ / name, make_gaussian_puff(spec), 2.0 * k);
       frames.push_back({{"file", name}, {"time", 2.0 * k}});
     }
-    const nlohmann::json manifest = {
-        {"keyframes", frames},
-        {"lifecycle",
-         {{"init_end", 0}, {"loop_start", 0}, {"loop_end", 1}, {"loop_wrap", 2.0},
-          {"extinction_start", 2}}},
-        {"trajectory",
-         {{"keys", {{{"time", 0.0}, {"position", {-2, 0, 0}}}, {{"time", 4.0}, {"position", {2, 0, 0}}}}}}}};
+    const nlohmann::json manifest = {{"keyframes", frames},
+                                     {"lifecycle",
+                                      {{"init_end", 0},
+                                       {"loop_start", 0},
+                                       {"loop_end", 1},
+                                       {"loop_wrap", 2.0},
+                                       {"extinction_start", 2}}},
+                                     {"trajectory",
+                                      {{"keys",
+                                        {{{"time", 0.0}, {"position", {-2, 0, 0}}},
+                                         {{"time", 4.0}, {"position", {2, 0, 0}}}}}}}};
     std::ofstream(dir_ / "cloud.json") << manifest.dump(2);
     const nlohmann::json scene = {
         {"sensors",
-         {{{"name", "ir"}, {"position", {0, -25, 3}}, {"look_at", {0, 0, 3}}, {"fov_deg", 30},
-           {"width", 20}, {"height", 14}, {"bands", {"mwir", "lwir"}}}}},
+         {{{"name", "ir"},
+           {"position", {0, -25, 3}},
+           {"look_at", {0, 0, 3}},
+           {"fov_deg", 30},
+           {"width", 20},
+           {"height", 14},
+           {"bands", {"mwir", "lwir"}}}}},
         {"clouds", {{{"type", "animated"}, {"manifest", "cloud.json"}, {"activation", 1.0}}}},
         {"surfaces", {{{"type", "ground"}, {"temperature", 290}}}},
         {"sky", {{"temperature", 250}}},
@@ -96,16 +104,17 @@ TEST_F(RenderSequenceTest, FrameIsBitIdenticalToASingleRenderAtItsTime) {
                              dir_)
                 .status,
             0);
-  const auto r = testing::run_cli(
-      "render " + (dir_ / "scene.json").string() + " -o " + single.string() + " --at 1.5 --threads 1",
-      dir_);
+  const auto r = testing::run_cli("render " + (dir_ / "scene.json").string() + " -o " +
+                                      single.string() + " --at 1.5 --threads 1",
+                                  dir_);
   ASSERT_EQ(r.status, 0) << r.err;
   const ExrImage a = read_exr(seq / "ir_f0001.exr");
   const ExrImage b = read_exr(single / "ir.exr");
   ASSERT_EQ(a.channels.size(), b.channels.size());
   for (const auto& [name, pixels] : a.channels) {
     ASSERT_TRUE(b.channels.count(name)) << name;
-    EXPECT_EQ(0, std::memcmp(pixels.data(), b.channels.at(name).data(), pixels.size() * sizeof(float)))
+    EXPECT_EQ(0,
+              std::memcmp(pixels.data(), b.channels.at(name).data(), pixels.size() * sizeof(float)))
         << name;
   }
 }

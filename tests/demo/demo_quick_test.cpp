@@ -49,20 +49,23 @@ std::vector<std::map<std::string, std::string>> read_csv(const fs::path& path) {
 TEST_F(DemoQuick, ArtefactsExistAndAreNotTrivial) {
   const fs::path out = dir_ / "demo";
   const fs::path log = dir_ / "demo.log";
-  const std::string command = std::string("OBSCURA='") + OBSCURA_CLI_PATH + "' OUT='" + out.string() +
-                              "' '" + OBSCURA_SOURCE_DIR + "/scripts/demo' --quick > '" +
-                              log.string() + "' 2>&1";
+  const std::string command = std::string("OBSCURA='") + OBSCURA_CLI_PATH + "' OUT='" +
+                              out.string() + "' '" + OBSCURA_SOURCE_DIR +
+                              "/scripts/demo' --quick > '" + log.string() + "' 2>&1";
   const int rc = std::system(command.c_str());
   std::ifstream log_in(log);
-  const std::string log_text((std::istreambuf_iterator<char>(log_in)), std::istreambuf_iterator<char>());
+  const std::string log_text((std::istreambuf_iterator<char>(log_in)),
+                             std::istreambuf_iterator<char>());
   ASSERT_EQ(rc, 0) << log_text;
 
   const std::vector<std::string> sensors = {"tv", "laser", "mwir_seeker", "lwir_seeker"};
-  for (const char* f : {"contact_sheet.png", "metrics.csv", "metrics.json", "metrics_transmittance.png",
-                        "metrics_screened_fraction.png", "metrics_contrast.png", "metrics_delta_t.png",
-                        "time_series.csv", "summary.json", "cloud/cloud.json"})
+  for (const char* f :
+       {"contact_sheet.png", "metrics.csv", "metrics.json", "metrics_transmittance.png",
+        "metrics_screened_fraction.png", "metrics_contrast.png", "metrics_delta_t.png",
+        "time_series.csv", "summary.json", "cloud/cloud.json"})
     EXPECT_TRUE(fs::is_regular_file(out / f)) << f << "\n" << log_text;
-  for (const auto& s : sensors) EXPECT_TRUE(fs::is_regular_file(out / ("target_mask_" + s + ".png"))) << s;
+  for (const auto& s : sensors)
+    EXPECT_TRUE(fs::is_regular_file(out / ("target_mask_" + s + ".png"))) << s;
   const PngSize sheet = read_png_size(out / "contact_sheet.png");
   EXPECT_GT(sheet.width, 300);
   EXPECT_GT(sheet.height, 200);
@@ -73,7 +76,8 @@ TEST_F(DemoQuick, ArtefactsExistAndAreNotTrivial) {
     int channels = 0;
     for (const auto& [name, values] : img.channels) {
       const auto ends_with = [&](const std::string& suffix) {
-        return name.size() > suffix.size() && name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0;
+        return name.size() > suffix.size() &&
+               name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0;
       };
       if (!ends_with(".radiance") && !ends_with(".transmittance")) continue;
       const auto [lo, hi] = std::minmax_element(values.begin(), values.end());

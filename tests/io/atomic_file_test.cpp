@@ -1,4 +1,3 @@
-#include "support/temp_dir_test.h"
 #include "obscura/io/atomic_file.h"
 
 #include <gtest/gtest.h>
@@ -9,6 +8,7 @@
 #include <string>
 
 #include "obscura/core/error.h"
+#include "support/temp_dir_test.h"
 
 namespace obscura {
 namespace {
@@ -17,7 +17,6 @@ namespace fs = std::filesystem;
 
 class AtomicFileTest : public testing::TempDirTest {
  protected:
-
   static std::string read(const fs::path& p) {
     std::ifstream in(p, std::ios::binary);
     std::stringstream ss;

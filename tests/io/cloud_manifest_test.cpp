@@ -44,7 +44,8 @@ class CloudManifestTest : public testing::TempDirTest {
     return "";
   }
   // Expects reading `doc` to fail with a message containing `path`.
-  void expect_error(const nlohmann::json& doc, const std::string& path, const std::string& what = "") {
+  void expect_error(const nlohmann::json& doc, const std::string& path,
+                    const std::string& what = "") {
     const std::string m = error_of(doc);
     EXPECT_NE(m.find(path + ":"), std::string::npos) << "expected " << path << " in: " << m;
     EXPECT_NE(m.find(what), std::string::npos) << "expected '" << what << "' in: " << m;

@@ -58,9 +58,11 @@ TEST(ContactSheet, LayoutHoldsEveryCellWithContent) {
   EXPECT_DOUBLE_EQ(r.row_max[0], 200.0 + 19 + 9);
   // Cells are not constant, and the same pixel differs between frames.
   std::set<std::array<std::uint8_t, 3>> colours;
-  for (int x = 0; x < 320; x += 16) colours.insert(pixel(r, r.cell_x[0] + 80 + x / 4, r.cell_y[0] + 80));
+  for (int x = 0; x < 320; x += 16)
+    colours.insert(pixel(r, r.cell_x[0] + 80 + x / 4, r.cell_y[0] + 80));
   EXPECT_GT(colours.size(), 3u);
-  EXPECT_NE(pixel(r, r.cell_x[0] + 80 + 10, r.cell_y[0] + 5), pixel(r, r.cell_x[2] + 80 + 10, r.cell_y[0] + 5));
+  EXPECT_NE(pixel(r, r.cell_x[0] + 80 + 10, r.cell_y[0] + 5),
+            pixel(r, r.cell_x[2] + 80 + 10, r.cell_y[0] + 5));
 }
 
 TEST(ContactSheet, SharedRowScaleMapsFramesToTheEndsOfTheColourmap) {

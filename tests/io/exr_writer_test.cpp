@@ -1,4 +1,3 @@
-#include "support/temp_dir_test.h"
 #include "obscura/io/exr_writer.h"
 
 #include <gtest/gtest.h>
@@ -10,6 +9,7 @@
 #include <limits>
 
 #include "obscura/core/error.h"
+#include "support/temp_dir_test.h"
 
 namespace obscura {
 namespace {

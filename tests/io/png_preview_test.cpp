@@ -1,4 +1,3 @@
-#include "support/temp_dir_test.h"
 #include "obscura/io/png_preview.h"
 
 #include <gtest/gtest.h>
@@ -9,6 +8,7 @@
 #include <limits>
 
 #include "obscura/core/error.h"
+#include "support/temp_dir_test.h"
 
 namespace obscura {
 namespace {

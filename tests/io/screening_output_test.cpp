@@ -56,9 +56,11 @@ TEST(ScreeningOutput, CsvHasUnitsInTheHeaderAndEmptyCellsForUndefinedValues) {
             "transmittance_mean,transmittance_p10,transmittance_p50,transmittance_p90,"
             "screened_fraction,target_radiance_W_m-2_sr-1,background_radiance_W_m-2_sr-1,contrast,"
             "target_apparent_temperature_K,background_apparent_temperature_K,delta_t_K");
-  EXPECT_NE(csv.find("\n0,cam,visible,0.4,0.7,40,60,1,0.9,1,1,0,10,8,,300,295,5\n"), std::string::npos)
+  EXPECT_NE(csv.find("\n0,cam,visible,0.4,0.7,40,60,1,0.9,1,1,0,10,8,,300,295,5\n"),
+            std::string::npos)
       << csv;
-  EXPECT_NE(csv.find("\n2,cam,lwir,8,12,40,60,0.1,0,0.1,0.2,1,8,8,0,298,295,3\n"), std::string::npos)
+  EXPECT_NE(csv.find("\n2,cam,lwir,8,12,40,60,0.1,0,0.1,0.2,1,8,8,0,298,295,3\n"),
+            std::string::npos)
       << csv;
 }
 
@@ -72,7 +74,8 @@ TEST(ScreeningOutput, JsonHasNullsForUndefinedAndNotReached) {
   mask.height = 2;
   mask.labels.assign(8, MaskLabel::kOther);
   finish_target_mask(mask, 8);
-  const nlohmann::json j = screening_metrics_json({{"software", "obscura"}}, settings, 0.5, {mask}, r, series);
+  const nlohmann::json j =
+      screening_metrics_json({{"software", "obscura"}}, settings, 0.5, {mask}, r, series);
   EXPECT_EQ(j["settings"]["transmittance_threshold"], 0.05);
   EXPECT_EQ(j["settings"]["reference_time_s"], 0.5);
   ASSERT_EQ(j["frames"].size(), 6u);
@@ -107,9 +110,11 @@ TEST(ScreeningOutput, SummaryTextSaysWhenTheTargetIsNotScreened) {
   const std::string text = screening_summary_text(summarize_screening(r, MetricsSettings{}, 0.5),
                                                   MetricsSettings{}, 0.5);
   EXPECT_NE(text.find("cam / lwir"), std::string::npos) << text;
-  EXPECT_NE(text.find("time to screen 1.3 s, screened 0.2 s in all (first 1.8–2 s)"), std::string::npos)
+  EXPECT_NE(text.find("time to screen 1.3 s, screened 0.2 s in all (first 1.8–2 s)"),
+            std::string::npos)
       << text;
-  EXPECT_NE(text.find("cam / visible  not screened (max screened fraction 0.25)"), std::string::npos)
+  EXPECT_NE(text.find("cam / visible  not screened (max screened fraction 0.25)"),
+            std::string::npos)
       << text;
   EXPECT_NE(text.find("min mean transmittance 0.1 at t = 2 s"), std::string::npos) << text;
 }
@@ -117,7 +122,8 @@ TEST(ScreeningOutput, SummaryTextSaysWhenTheTargetIsNotScreened) {
 class ScreeningFiles : public testing::TempDirTest {};
 
 TEST_F(ScreeningFiles, WritesTheFourPlots) {
-  const auto files = write_screening_plots(dir_, rows(), MetricsSettings{}, R"({"software":"obscura"})");
+  const auto files =
+      write_screening_plots(dir_, rows(), MetricsSettings{}, R"({"software":"obscura"})");
   EXPECT_TRUE(files.skipped.empty());
   ASSERT_EQ(files.written.size(), 4u);
   for (const char* name : {kTransmittancePlot, kScreenedFractionPlot, kContrastPlot, kDeltaTPlot}) {
@@ -134,7 +140,8 @@ TEST_F(ScreeningFiles, SkipsPlotsWithoutAnEligibleBand) {
   const auto files = write_screening_plots(dir_, r, MetricsSettings{}, "");
   EXPECT_EQ(files.written.size(), 3u);
   ASSERT_EQ(files.skipped.size(), 1u);
-  EXPECT_TRUE(testing::contains(files.skipped[0], "metrics_contrast.png: no visible/NIR band")) << files.skipped[0];
+  EXPECT_TRUE(testing::contains(files.skipped[0], "metrics_contrast.png: no visible/NIR band"))
+      << files.skipped[0];
   EXPECT_FALSE(std::filesystem::exists(dir_ / kContrastPlot));
 }
 

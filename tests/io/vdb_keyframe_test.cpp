@@ -427,8 +427,11 @@ TEST_F(VdbKeyframeTest, FailedWritesLeaveNothingBehind) {
                      "sigma_s_001 voxel (1,2,3)");
   expect_input_error([&] { write_cloud_keyframe(out, grid, std::nan("")); }, out, "time_s");
   expect_input_error([&] { write_cloud_keyframe(out, grid, 1.0, {{"dims", "1"}}); }, out, "dims");
-  expect_input_error([&] { write_cloud_keyframe(out, grid, 1.0, {{"obscura_form", "x"}}); }, out,
-                     "obscura_form");
+  expect_input_error(
+      [&] {
+        write_cloud_keyframe(out, grid, 1.0, {{"obscura_form", "x"}});
+      },
+      out, "obscura_form");
   EXPECT_EQ(dir_entries(), std::vector<std::string>{"blocker"});
 }
 

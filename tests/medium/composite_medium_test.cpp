@@ -16,8 +16,9 @@ namespace {
 
 std::shared_ptr<HomogeneousMedium> box(BBox3 b, double sa, double ss, double g, double t,
                                        double wavelength_um = 10.0) {
-  return std::make_shared<HomogeneousMedium>(b, std::vector<double>{wavelength_um}, std::vector<double>{sa},
-                                             std::vector<double>{ss}, std::vector<double>{g}, t);
+  return std::make_shared<HomogeneousMedium>(b, std::vector<double>{wavelength_um},
+                                             std::vector<double>{sa}, std::vector<double>{ss},
+                                             std::vector<double>{g}, t);
 }
 
 TEST(Cubic, ShiftIsExact) {
@@ -29,8 +30,8 @@ TEST(Cubic, ShiftIsExact) {
 // Optical depth is additive over overlapping media, whatever their layout.
 TEST(CompositeMedium, OpticalDepthAdds) {
   auto a = std::make_shared<GridMedium>(testing::random_grid({5, 6, 7}, 1, 3));
-  auto b = std::make_shared<GridMedium>(testing::random_grid({4, 4, 4}, 1, 8,
-                                                             rotation_from_euler_deg({0, 20, 45})));
+  auto b = std::make_shared<GridMedium>(
+      testing::random_grid({4, 4, 4}, 1, 8, rotation_from_euler_deg({0, 20, 45})));
   auto c = box(BBox3({-1, 0, 1}, {1.5, 2, 3}), 0.3, 0.2, 0.5, 300, 3.0);  // random_grid's 3 µm
   const CompositeMedium all({a, b, c});
   Rng rng(1, 0);
@@ -72,9 +73,9 @@ TEST(CompositeMedium, PointCoefficientsAddAndWeightG) {
 
 TEST(CompositeMedium, MismatchedWavelengthsAreAnError) {
   auto a = box(BBox3({0, 0, 0}, {1, 1, 1}), 0.1, 0.0, 0.0, 300);
-  auto b = std::make_shared<HomogeneousMedium>(BBox3({0, 0, 0}, {1, 1, 1}), std::vector<double>{4.0},
-                                               std::vector<double>{0.1}, std::vector<double>{0.0},
-                                               std::vector<double>{0.0}, 300.0);
+  auto b = std::make_shared<HomogeneousMedium>(
+      BBox3({0, 0, 0}, {1, 1, 1}), std::vector<double>{4.0}, std::vector<double>{0.1},
+      std::vector<double>{0.0}, std::vector<double>{0.0}, 300.0);
   try {
     CompositeMedium({a, b}, "scene.json");
     FAIL();

@@ -89,7 +89,8 @@ TEST(GridMedium, MajorantBoundsExtinctionEverywhere) {
   for (int i = 0; i < 20000; ++i) {
     const Vec3 u(-0.5 + 13 * rng.uniform(), -0.5 + 9 * rng.uniform(), -0.5 + 11 * rng.uniform());
     medium.coefficients_at(grid->placement().index_to_world(u), p);
-    const int bx = static_cast<int>(std::floor(u.x + 1)) / 4, by = static_cast<int>(std::floor(u.y + 1)) / 4,
+    const int bx = static_cast<int>(std::floor(u.x + 1)) / 4,
+              by = static_cast<int>(std::floor(u.y + 1)) / 4,
               bz = static_cast<int>(std::floor(u.z + 1)) / 4;
     for (int s = 0; s < 2; ++s) {
       EXPECT_LE(p.sigma_a[s] + p.sigma_s[s], maj.majorant(bx, by, bz, s));
@@ -103,7 +104,8 @@ TEST(GridMedium, SkipsEmptyBlocksAndKeepsIsolatedVoxels) {
   // cells around it and still integrate it exactly.
   GridPlacement placement;
   placement.voxel_size_m = 1.0;
-  auto grid = std::make_shared<VoxelGrid>(GridDims{40, 40, 40}, placement, std::vector<double>{10.0});
+  auto grid =
+      std::make_shared<VoxelGrid>(GridDims{40, 40, 40}, placement, std::vector<double>{10.0});
   grid->sigma_a(0)[grid->index(20, 20, 20)] = 2.0f;
   const GridMedium medium(grid);
   // Along x through the voxel centre: a tent of height 2 and half-width 1 m, τ = 2.
@@ -146,9 +148,9 @@ TEST(GridMedium, GaussianPuffOpticalDepthConvergesToClosedForm) {
   spec.peak_sigma_s = {0.4};
   spec.g = {0.0};
   const Ray rays[] = {
-      {{-20, -2.0, 5.0}, {1, 0, 0}},                           // through the centre
-      {{-20, -1.3, 5.9}, normalize(Vec3(1, 0.05, -0.02))},     // off-centre, oblique
-      {{1.0, -2.0, -20.0}, normalize(Vec3(0.5, 0.5, 25.0))},   // nearly vertical
+      {{-20, -2.0, 5.0}, {1, 0, 0}},                          // through the centre
+      {{-20, -1.3, 5.9}, normalize(Vec3(1, 0.05, -0.02))},    // off-centre, oblique
+      {{1.0, -2.0, -20.0}, normalize(Vec3(0.5, 0.5, 25.0))},  // nearly vertical
   };
   double previous_error = 1.0;
   for (int res : {32, 64, 128}) {

@@ -14,7 +14,8 @@ namespace {
 bool identical(const VoxelGrid& x, const VoxelGrid& y) {
   if (!(x.dims() == y.dims()) || x.channel_count() != y.channel_count()) return false;
   for (int c = 0; c < x.channel_count(); ++c)
-    if (std::memcmp(x.channel(c), y.channel(c), x.dims().count() * sizeof(float)) != 0) return false;
+    if (std::memcmp(x.channel(c), y.channel(c), x.dims().count() * sizeof(float)) != 0)
+      return false;
   return true;
 }
 
@@ -31,8 +32,10 @@ TEST(KeyframeInterpolation, MidwayCoefficientsAreTheAverage) {
   const VoxelGrid m = interpolate_keyframes(*a, *b, 0.5);
   for (int s = 0; s < 2; ++s)
     for (std::size_t v = 0; v < 60; ++v) {
-      EXPECT_EQ(m.sigma_a(s)[v], static_cast<float>(0.5 * a->sigma_a(s)[v] + 0.5 * b->sigma_a(s)[v]));
-      EXPECT_EQ(m.sigma_s(s)[v], static_cast<float>(0.5 * a->sigma_s(s)[v] + 0.5 * b->sigma_s(s)[v]));
+      EXPECT_EQ(m.sigma_a(s)[v],
+                static_cast<float>(0.5 * a->sigma_a(s)[v] + 0.5 * b->sigma_a(s)[v]));
+      EXPECT_EQ(m.sigma_s(s)[v],
+                static_cast<float>(0.5 * a->sigma_s(s)[v] + 0.5 * b->sigma_s(s)[v]));
     }
 }
 
@@ -91,7 +94,8 @@ TEST(KeyframeInterpolation, DifferentExtentsAreResampledOntoTheUnion) {
         const Vec3 p = m.placement().index_to_world(Vec3(i, j, k));
         ma.coefficients_at(p, pa_point);
         mb.coefficients_at(p, pb_point);
-        EXPECT_NEAR(m.sigma_a(0)[m.index(i, j, k)], 0.5 * (pa_point.sigma_a[0] + pb_point.sigma_a[0]), 1e-6);
+        EXPECT_NEAR(m.sigma_a(0)[m.index(i, j, k)],
+                    0.5 * (pa_point.sigma_a[0] + pb_point.sigma_a[0]), 1e-6);
       }
 }
 

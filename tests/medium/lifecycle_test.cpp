@@ -254,8 +254,8 @@ TEST(Lifecycle, StateIsContinuousUntilExtinct) {
     return (1 - s.weight) * value[s.keyframe0] + s.weight * value[s.keyframe1];
   };
   const double step = 1e-3;
-  for (std::optional<double> off : std::vector<std::optional<double>>{
-           kNever, 0.3, 1.0, 3.7, 4.0, 6.2, 7.0, 7.3, 9.99, 21.5}) {
+  for (std::optional<double> off :
+       std::vector<std::optional<double>>{kNever, 0.3, 1.0, 3.7, 4.0, 6.2, 7.0, 7.3, 9.99, 21.5}) {
     LifecycleState prev = l.at(0, 0, off);
     for (double u = step; u < 40; u += step) {
       const LifecycleState s = l.at(u, 0, off);
@@ -289,7 +289,8 @@ TEST(Lifecycle, BadSpecsNameTheField) {
   const std::vector<double> t = {0, 1, 2, 3, 4};
   EXPECT_EQ(field_of(t, {1, 2, 3, 1.0, 4}), "");
   EXPECT_EQ(field_of({}, {0, 0, 0, 0.0, 0}), "keyframes");
-  EXPECT_EQ(field_of({0}, {0, 0, 0, 0.0, 0}), "lifecycle/extinction_start");  // no extinction keyframe
+  EXPECT_EQ(field_of({0}, {0, 0, 0, 0.0, 0}),
+            "lifecycle/extinction_start");  // no extinction keyframe
   EXPECT_EQ(field_of(t, {-1, 2, 3, 1.0, 4}), "lifecycle/init_end");
   EXPECT_EQ(field_of(t, {5, 2, 3, 1.0, 4}), "lifecycle/init_end");
   EXPECT_EQ(field_of(t, {3, 2, 3, 1.0, 4}), "lifecycle/loop_start");

@@ -48,9 +48,9 @@ void expect_bounds_and_cover(const Medium& m, std::uint64_t seed) {
 }
 
 TEST(MajorantSegments, GridBoundsAndCovers) {
-  expect_bounds_and_cover(GridMedium(testing::random_grid({9, 7, 8}, 2, 4,
-                                                          rotation_from_euler_deg({15, 25, 35})), 3),
-                          1);
+  expect_bounds_and_cover(
+      GridMedium(testing::random_grid({9, 7, 8}, 2, 4, rotation_from_euler_deg({15, 25, 35})), 3),
+      1);
 }
 
 TEST(MajorantSegments, HomogeneousIsExact) {
@@ -68,9 +68,9 @@ TEST(MajorantSegments, HomogeneousIsExact) {
 
 TEST(MajorantSegments, CompositeSumsItsChildren) {
   auto a = std::make_shared<GridMedium>(testing::random_grid({6, 6, 6}, 1, 7), 2);
-  auto b = std::make_shared<HomogeneousMedium>(BBox3({-1, 0.5, 2.5}, {1, 2, 4}), std::vector<double>{3.0},
-                                               std::vector<double>{0.4}, std::vector<double>{0.1},
-                                               std::vector<double>{0.0}, 300.0);
+  auto b = std::make_shared<HomogeneousMedium>(
+      BBox3({-1, 0.5, 2.5}, {1, 2, 4}), std::vector<double>{3.0}, std::vector<double>{0.4},
+      std::vector<double>{0.1}, std::vector<double>{0.0}, 300.0);
   expect_bounds_and_cover(CompositeMedium({a, b}), 3);
 }
 

@@ -22,8 +22,8 @@ constexpr int kSamples = 200000;
 
 // Chi-square of free-flight distances along `ray` over [0, t_max]: bins in
 // [0, t_max] plus the "escaped" cell, against σt(t) e^{−τ(0,t)}.
-testing::Chi2Result free_flight_chi2(const Medium& m, const Ray& ray, double t_max, double lambda_um,
-                                     std::uint64_t seed) {
+testing::Chi2Result free_flight_chi2(const Medium& m, const Ray& ray, double t_max,
+                                     double lambda_um, std::uint64_t seed) {
   const SpectralLerp lambda = SpectralLerp::at(m.wavelengths_um(), lambda_um);
   MediumPoint scratch, p;
   auto sampler = [&](Rng& rng) {
@@ -55,15 +55,18 @@ TEST(DeltaTracking, HeterogeneousMediaFollowTheirOpticalDepth) {
       testing::random_grid({7, 6, 5}, 2, 11, rotation_from_euler_deg({10, 20, 30})), 2);
   const BBox3 b = grid->bounds();
   const Ray ray{b.center() - Vec3(1, 0.2, 0.1) * 10.0, normalize(Vec3(1, 0.2, 0.1))};
-  EXPECT_TRUE(testing::chi2_passes("grid at 3 µm", free_flight_chi2(*grid, ray, 20.0, 3.0, 2), threshold));
-  EXPECT_TRUE(testing::chi2_passes("grid at 3.4 µm", free_flight_chi2(*grid, ray, 20.0, 3.4, 3), threshold));
+  EXPECT_TRUE(
+      testing::chi2_passes("grid at 3 µm", free_flight_chi2(*grid, ray, 20.0, 3.0, 2), threshold));
+  EXPECT_TRUE(testing::chi2_passes("grid at 3.4 µm", free_flight_chi2(*grid, ray, 20.0, 3.4, 3),
+                                   threshold));
   // The grid overlapped by a box: majorants add.
   auto box = std::make_shared<HomogeneousMedium>(
       BBox3(b.center() - Vec3(0.5, 0.5, 0.5), b.center() + Vec3(0.5, 0.5, 0.5)),
       std::vector<double>{3.0, 4.0}, std::vector<double>{0.8, 0.6}, std::vector<double>{0.2, 0.1},
       std::vector<double>{0.0, 0.0}, 300.0);
   const CompositeMedium both({grid, box});
-  EXPECT_TRUE(testing::chi2_passes("grid + box", free_flight_chi2(both, ray, 20.0, 3.7, 4), threshold));
+  EXPECT_TRUE(
+      testing::chi2_passes("grid + box", free_flight_chi2(both, ray, 20.0, 3.7, 4), threshold));
 }
 
 // Ratio tracking: the mean of N estimates against e^{−τ}, within 4 standard
@@ -77,7 +80,8 @@ TEST(RatioTracking, EstimatesTransmittanceWithoutBias) {
   MediumPoint scratch;
   const SpectralLerp lambda = SpectralLerp::at(grid->wavelengths_um(), 3.0);
   for (int r = 0; r < 5; ++r) {
-    const Vec3 d = normalize(Vec3(dirs.uniform() - 0.5, dirs.uniform() - 0.5, dirs.uniform() - 0.5));
+    const Vec3 d =
+        normalize(Vec3(dirs.uniform() - 0.5, dirs.uniform() - 0.5, dirs.uniform() - 0.5));
     const Ray ray{b.center() - d * 10.0, d};
     const double exact = std::exp(-grid->optical_depth(ray, 0.0, 20.0)[0]);
     Rng rng(7, r);

@@ -33,7 +33,9 @@ TEST(VoxelGrid, RejectsDimsWhoseProductOverflows) {
 
 TEST(VoxelGrid, RejectsGridsLargerThanAvailableMemory) {
   // 100000³ × 4 channels × 4 bytes = 16 PB: representable, but no machine has it.
-  const std::string m = message_of([] { VoxelGrid({100000, 100000, 100000}, {}, {10.0}, "big.vdb"); });
+  const std::string m = message_of([] {
+    VoxelGrid({100000, 100000, 100000}, {}, {10.0}, "big.vdb");
+  });
   EXPECT_NE(m.find("available"), std::string::npos) << m;
   EXPECT_NE(m.find("big.vdb"), std::string::npos) << m;
 }

@@ -22,8 +22,8 @@ namespace {
 using cdouble = std::complex<double>;
 
 // ---------------------------------------------------------------------------
-// The reference table data/validation/mie_reference.csv (a copy of the project's shared validation data)
-// (columns x, m_real, m_imag, qext, qsca, g, source; m_imag ≥ 0 absorbing).
+// The reference table data/validation/mie_reference.csv (a copy of the project's shared validation
+// data) (columns x, m_real, m_imag, qext, qsca, g, source; m_imag ≥ 0 absorbing).
 
 struct ReferenceRow {
   double x = 0, m_real = 0, m_imag = 0;
@@ -48,8 +48,7 @@ std::vector<std::string> split_csv(const std::string& line) {
 }
 
 std::vector<ReferenceRow> read_reference(std::string* error) {
-  const std::string path =
-      std::string(OBSCURA_SOURCE_DIR) + "/data/validation/mie_reference.csv";
+  const std::string path = std::string(OBSCURA_SOURCE_DIR) + "/data/validation/mie_reference.csv";
   std::ifstream in(path);
   if (!in) {
     *error = "cannot open " + path;

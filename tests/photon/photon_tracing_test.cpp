@@ -22,15 +22,16 @@ namespace {
 constexpr double kPi = std::numbers::pi;
 
 SpectralNodes nodes_at(double wavelength_um, const std::vector<double>& medium_wl) {
-  return SpectralNodes(BandQuadrature(Band::flat("mono", wavelength_um - 1e-6, wavelength_um + 1e-6), 1, 0.0),
-                       medium_wl);
+  return SpectralNodes(
+      BandQuadrature(Band::flat("mono", wavelength_um - 1e-6, wavelength_um + 1e-6), 1, 0.0),
+      medium_wl);
 }
 
 Scene cube_scene(double sigma_a, double sigma_s, double temperature) {
   Scene scene;
-  scene.medium = std::make_shared<HomogeneousMedium>(BBox3({0, 0, 0}, {2, 1, 1}), std::vector<double>{10.0},
-                                                     std::vector<double>{sigma_a}, std::vector<double>{sigma_s},
-                                                     std::vector<double>{0.3}, temperature);
+  scene.medium = std::make_shared<HomogeneousMedium>(
+      BBox3({0, 0, 0}, {2, 1, 1}), std::vector<double>{10.0}, std::vector<double>{sigma_a},
+      std::vector<double>{sigma_s}, std::vector<double>{0.3}, temperature);
   return scene;
 }
 
@@ -73,7 +74,8 @@ TEST(PhotonTracing, HeterogeneousEmissionIsUnbiased) {
   spec.ambient_temperature_k = 280;
   spec.temperature_excess_k = 60;
   Scene scene;
-  scene.medium = std::make_shared<GridMedium>(std::make_shared<VoxelGrid>(make_gaussian_puff(spec)));
+  scene.medium =
+      std::make_shared<GridMedium>(std::make_shared<VoxelGrid>(make_gaussian_puff(spec)));
   const SpectralNodes nodes = nodes_at(10.0, scene.medium->wavelengths_um());
   const SpectralNode& node = nodes.nodes()[0];
   const BBox3 box = scene.medium->bounds();
@@ -84,7 +86,8 @@ TEST(PhotonTracing, HeterogeneousEmissionIsUnbiased) {
   for (int k = 0; k < n; ++k)
     for (int j = 0; j < n; ++j)
       for (int i = 0; i < n; ++i) {
-        scene.medium->coefficients_at(box.lo + Vec3((i + 0.5) * h.x, (j + 0.5) * h.y, (k + 0.5) * h.z), p);
+        scene.medium->coefficients_at(
+            box.lo + Vec3((i + 0.5) * h.x, (j + 0.5) * h.y, (k + 0.5) * h.z), p);
         quadrature += 4 * kPi * p.sigma_a[0] * node.planck(p.temperature_k);
       }
   quadrature *= h.x * h.y * h.z;
@@ -162,7 +165,8 @@ TEST(PhotonTracing, ABlackGroundUnderTheCloudChangesNoPhoton) {
   const auto with = trace_photons(scene, nodes.nodes()[0], 1ull << 40, s);
   ASSERT_GT(without.photons.size(), 1000u);
   ASSERT_EQ(without.photons.size(), with.photons.size());
-  EXPECT_EQ(0, std::memcmp(without.photons.data(), with.photons.data(), with.photons.size() * sizeof(Photon)));
+  EXPECT_EQ(0, std::memcmp(without.photons.data(), with.photons.data(),
+                           with.photons.size() * sizeof(Photon)));
 }
 
 }  // namespace

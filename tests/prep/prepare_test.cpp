@@ -8,7 +8,6 @@
 #include <algorithm>
 #include <cstring>
 #include <fstream>
-
 #include <nlohmann/json.hpp>
 
 #include "obscura/core/error.h"
@@ -36,7 +35,8 @@ ConcentrationFrame small_frame(double time_s, float scale) {
   c.dims = {4, 3, 2};
   c.placement.origin_m = {-2, -1, 0};
   c.placement.voxel_size_m = 0.5;
-  for (std::size_t v = 0; v < c.dims.count(); ++v) c.values.push_back(scale * static_cast<float>(v));
+  for (std::size_t v = 0; v < c.dims.count(); ++v)
+    c.values.push_back(scale * static_cast<float>(v));
   return f;
 }
 
@@ -85,7 +85,8 @@ class PrepareTest : public testing::TempDirTest {
     std::ifstream in(kExample);
     return nlohmann::json::parse(in);
   }
-  std::filesystem::path write(const nlohmann::json& doc, const std::string& name = "config.json") const {
+  std::filesystem::path write(const nlohmann::json& doc,
+                              const std::string& name = "config.json") const {
     std::ofstream(dir_ / name) << doc.dump(2);
     return dir_ / name;
   }
@@ -109,7 +110,8 @@ TEST_F(PrepareTest, TheEightGrenadeExampleCarriesItsMassIntoTheKeyframes) {
   // The fresh smoke is warmer than the air.
   float t_max = 0;
   const CloudKeyframe k1 = read_cloud_keyframe(r.keyframes[1]);
-  for (std::size_t v = 0; v < k1.grid->dims().count(); ++v) t_max = std::max(t_max, k1.grid->temperature()[v]);
+  for (std::size_t v = 0; v < k1.grid->dims().count(); ++v)
+    t_max = std::max(t_max, k1.grid->temperature()[v]);
   EXPECT_GT(t_max, 300.0f);
 }
 
@@ -140,7 +142,9 @@ TEST_F(PrepareTest, SpeciesFormReadsAndRendersExactlyAsTheSpectralForm) {
     EXPECT_EQ(a.grid->placement().origin_m, b.grid->placement().origin_m);
     EXPECT_EQ(a.grid->placement().voxel_size_m, b.grid->placement().voxel_size_m);
     for (int c = 0; c < a.grid->channel_count(); ++c)
-      EXPECT_EQ(std::memcmp(a.grid->channel(c), b.grid->channel(c), a.grid->dims().count() * sizeof(float)), 0)
+      EXPECT_EQ(std::memcmp(a.grid->channel(c), b.grid->channel(c),
+                            a.grid->dims().count() * sizeof(float)),
+                0)
           << "keyframe " << i << " " << a.grid->channel_name(c);
   }
   // Two floats per voxel instead of 13: the files are smaller.
@@ -182,8 +186,9 @@ TEST_F(PrepareTest, CfdFramesFromVtk) {
   write_vtk_frame(dir_ / "f1.vtk", small_frame(4, 2.0f), VtkEncoding::kAscii);
   const nlohmann::json doc = {
       {"source", "vtk"},
-      {"vtk", {{"frames", {{{"time_s", 0}, {"file", "f0.vtk"}}, {{"time_s", 4}, {"file", "f1.vtk"}}}},
-               {"ambient_temperature_k", 280}}},
+      {"vtk",
+       {{"frames", {{{"time_s", 0}, {"file", "f0.vtk"}}, {{"time_s", 4}, {"file", "f1.vtk"}}}},
+        {"ambient_temperature_k", 280}}},
       {"material", "soot"},
       {"wavelengths_um", {0.55, 10.0}}};
   const PrepareReport r = prepare_cloud(write(doc), dir_ / "out");
@@ -209,9 +214,14 @@ TEST_F(PrepareTest, BadInputNamesItsFieldAndLeavesNothingBehind) {
   EXPECT_NE(error_of(doc).find("/material"), std::string::npos);
   doc = example();
   doc["dispersion"]["devices"][2]["agent_mass_g"] = -5;
-  EXPECT_NE(error_of(doc).find("/dispersion/devices/2/agent_mass_g"), std::string::npos) << error_of(doc);
+  EXPECT_NE(error_of(doc).find("/dispersion/devices/2/agent_mass_g"), std::string::npos)
+      << error_of(doc);
   doc = example();
-  doc["lifecycle"] = {{"init_end", 0}, {"loop_start", 0}, {"loop_end", 40}, {"loop_wrap", 1}, {"extinction_start", 41}};
+  doc["lifecycle"] = {{"init_end", 0},
+                      {"loop_start", 0},
+                      {"loop_end", 40},
+                      {"loop_wrap", 1},
+                      {"extinction_start", 41}};
   EXPECT_NE(error_of(doc).find("lifecycle"), std::string::npos) << error_of(doc);
   doc = example();
   doc["wavelengths_um"] = {10.0, 4.0};
@@ -232,13 +242,15 @@ TEST_F(PrepareTest, BadInputNamesItsFieldAndLeavesNothingBehind) {
 }
 
 TEST_F(PrepareTest, CommandLine) {
-  const auto r = testing::run_cli("prepare " + kExample.string() + " -o " + (dir_ / "c").string() + " --json -q", dir_);
+  const auto r = testing::run_cli(
+      "prepare " + kExample.string() + " -o " + (dir_ / "c").string() + " --json -q", dir_);
   ASSERT_EQ(r.status, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
   EXPECT_EQ(j["keyframes"].get<int>(), 31);
   EXPECT_TRUE(j["lifecycle"]["suggested"].get<bool>());
   EXPECT_TRUE(std::filesystem::exists(dir_ / "c" / "cloud.json"));
-  const auto bad = testing::run_cli("prepare " + (dir_ / "missing.json").string() + " -o " + (dir_ / "d").string(), dir_);
+  const auto bad = testing::run_cli(
+      "prepare " + (dir_ / "missing.json").string() + " -o " + (dir_ / "d").string(), dir_);
   EXPECT_EQ(bad.status, 1);
   EXPECT_NE(bad.err.find("missing.json"), std::string::npos) << bad.err;
 }

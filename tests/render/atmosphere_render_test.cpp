@@ -31,7 +31,8 @@ Scene ground_scene(double ground_k) {
   sensor.camera = PinholeCamera({0, 0, 400}, {0, 0, 0}, {0, 1, 0}, 1.0, 3, 3);
   sensor.bands = {Band::preset("mwir"), Band::preset("lwir")};
   scene.sensors.push_back(sensor);
-  scene.surfaces.push_back(std::make_unique<GroundPlane>("ground", SurfaceMaterial{ground_k, 1.0}, 0.0));
+  scene.surfaces.push_back(
+      std::make_unique<GroundPlane>("ground", SurfaceMaterial{ground_k, 1.0}, 0.0));
   scene.sky = Sky::blackbody(0.0, true);
   scene.settings.spectral_nodes_per_band = 8;
   scene.atmosphere.enabled = true;
@@ -104,8 +105,10 @@ TEST(AtmosphereRender, SpectralEmissivityPerBand) {
   scene.surfaces.clear();
   scene.surfaces.push_back(std::make_unique<GroundPlane>("ground", m, 0.0));
   const SensorImage img = render_sensor(scene, scene.sensors[0], {});
-  EXPECT_NEAR(img.bands[0].radiance[4], 0.2 * band_planck(3, 5, 300.0), 1e-6 * band_planck(3, 5, 300.0));
-  EXPECT_NEAR(img.bands[1].radiance[4], 0.9 * band_planck(8, 12, 300.0), 1e-6 * band_planck(8, 12, 300.0));
+  EXPECT_NEAR(img.bands[0].radiance[4], 0.2 * band_planck(3, 5, 300.0),
+              1e-6 * band_planck(3, 5, 300.0));
+  EXPECT_NEAR(img.bands[1].radiance[4], 0.9 * band_planck(8, 12, 300.0),
+              1e-6 * band_planck(8, 12, 300.0));
 }
 
 }  // namespace
@@ -124,7 +127,8 @@ TEST(AtmosphereRender, SpectralEmissivityInEquilibriumLooksBlackToEveryMethod) {
     scene.sky = Sky::blackbody(300.0, true);
     scene.surfaces.clear();
     scene.surfaces.push_back(std::make_unique<GroundPlane>(
-        "ground", SurfaceMaterial{300.0, 1.0, {{3.0, 0.1}, {5.0, 0.8}, {8.0, 0.3}, {12.0, 0.95}}}, 0.0));
+        "ground", SurfaceMaterial{300.0, 1.0, {{3.0, 0.1}, {5.0, 0.8}, {8.0, 0.3}, {12.0, 0.95}}},
+        0.0));
     // A thin scattering box (the photon map needs a medium to work on); the
     // emission–absorption method treats scattering as loss, so it sees none.
     if (std::string(method) != "emission-absorption")

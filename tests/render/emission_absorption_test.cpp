@@ -14,8 +14,9 @@ namespace {
 
 // One node at 10 µm with unit weight: the integrator's spectral radiance there.
 SpectralNodes single_node(double wavelength_um, const std::vector<double>& medium_wl) {
-  return SpectralNodes(BandQuadrature(Band::flat("mono", wavelength_um - 1e-6, wavelength_um + 1e-6), 1, 0.0),
-                       medium_wl);
+  return SpectralNodes(
+      BandQuadrature(Band::flat("mono", wavelength_um - 1e-6, wavelength_um + 1e-6), 1, 0.0),
+      medium_wl);
 }
 
 // A laterally large slab of voxels, thickness `nz` voxels of 0.25 m along z.

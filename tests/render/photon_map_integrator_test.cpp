@@ -43,7 +43,8 @@ TEST(PhotonMapIntegrator, SlabOfModerateThicknessAgainstDisort) {
   const SlabSpec slab{0.9, 1.0, 0.5, SlabIncidence::kCollimated, 1.0, 20.0};
   const SlabReference ref{0.129793276, 0.739091109, 0.367879441, "DISORT"};
   for (const auto& r : validate_slab(slab, ref, photon_map_options(1000000)))
-    EXPECT_TRUE(r.pass) << r.quantity << " " << r.obtained << " ± " << r.stderr_mean << " vs " << r.reference;
+    EXPECT_TRUE(r.pass) << r.quantity << " " << r.obtained << " ± " << r.stderr_mean << " vs "
+                        << r.reference;
 }
 
 // Relative RMSE of the photon-map image against the path-traced one with the

@@ -20,7 +20,8 @@ Scene test_scene(int spp) {
   sensor.bands = {Band::preset("mwir"), Band::preset("lwir")};
   scene.sensors.push_back(sensor);
   scene.medium = std::make_shared<GridMedium>(testing::random_grid({12, 10, 8}, 3, 17));
-  scene.surfaces.push_back(std::make_unique<GroundPlane>("ground", SurfaceMaterial{290, 0.95}, 0.0));
+  scene.surfaces.push_back(
+      std::make_unique<GroundPlane>("ground", SurfaceMaterial{290, 0.95}, 0.0));
   scene.surfaces.push_back(
       std::make_unique<BoxSurface>("box", SurfaceMaterial{330, 0.9}, BBox3({-1, 3, 0}, {1, 5, 2})));
   scene.sky = Sky::blackbody(240, true);
@@ -41,7 +42,8 @@ TEST(Renderer, BitIdenticalWithOneAndTwoThreads) {
   for (std::size_t i = 0; i < a.bands.size(); ++i) {
     const auto& x = a.bands[i];
     const auto& y = b.bands[i];
-    EXPECT_EQ(0, std::memcmp(x.radiance.data(), y.radiance.data(), x.radiance.size() * sizeof(float)));
+    EXPECT_EQ(0,
+              std::memcmp(x.radiance.data(), y.radiance.data(), x.radiance.size() * sizeof(float)));
     EXPECT_EQ(0, std::memcmp(x.transmittance.data(), y.transmittance.data(),
                              x.transmittance.size() * sizeof(float)));
     EXPECT_EQ(0, std::memcmp(x.apparent_temperature.data(), y.apparent_temperature.data(),
@@ -64,7 +66,8 @@ TEST(Renderer, BlackbodySurfacesAreSeenAtTheirTemperature) {
   sensor.camera = PinholeCamera({0, 0, 10}, {0, 100, 10}, {0, 0, 1}, 60.0, 8, 8);
   sensor.bands = {Band::preset("lwir")};
   scene.sensors.push_back(sensor);
-  scene.surfaces.push_back(std::make_unique<GroundPlane>("ground", SurfaceMaterial{301.5, 1.0}, 0.0));
+  scene.surfaces.push_back(
+      std::make_unique<GroundPlane>("ground", SurfaceMaterial{301.5, 1.0}, 0.0));
   scene.sky = Sky::blackbody(230, true);
   const SensorImage img = render_sensor(scene, sensor, {});
   const auto& b = img.bands[0];
@@ -86,11 +89,9 @@ TEST(Renderer, GreySurfaceInEquilibriumWithSkyLooksBlack) {
   sensor.bands = {Band::preset("mwir")};
   scene.sensors.push_back(sensor);
   scene.surfaces.push_back(std::make_unique<GroundPlane>("g", SurfaceMaterial{300.0, 0.3}, 0.0));
-  scene.medium = std::make_shared<HomogeneousMedium>(BBox3({-50, -50, 0}, {50, 50, 5}),
-                                                     std::vector<double>{4.0},
-                                                     std::vector<double>{0.2},
-                                                     std::vector<double>{0.0},
-                                                     std::vector<double>{0.0}, 300.0);
+  scene.medium = std::make_shared<HomogeneousMedium>(
+      BBox3({-50, -50, 0}, {50, 50, 5}), std::vector<double>{4.0}, std::vector<double>{0.2},
+      std::vector<double>{0.0}, std::vector<double>{0.0}, 300.0);
   scene.sky = Sky::blackbody(300.0, true);
   const SensorImage img = render_sensor(scene, sensor, {});
   for (float t : img.bands[0].apparent_temperature) EXPECT_NEAR(t, 300.0, 1e-3);
@@ -126,7 +127,8 @@ TEST(Renderer, PathTracerAgreesWithExactImageWithoutScattering) {
     for (std::size_t i = 0; i < mc.bands[b].radiance.size(); ++i) {
       const double se = mc.bands[b].radiance_stderr[i];
       const double d = mc.bands[b].radiance[i] - exact.bands[b].radiance[i];
-      EXPECT_LE(std::abs(d), 5.0 * se + 1e-6 * exact.bands[b].radiance[i]) << "band " << b << " pixel " << i;
+      EXPECT_LE(std::abs(d), 5.0 * se + 1e-6 * exact.bands[b].radiance[i])
+          << "band " << b << " pixel " << i;
       EXPECT_NEAR(mc.bands[b].transmittance[i], exact.bands[b].transmittance[i], 0.05);
       diff += d;
       var += se * se;
@@ -159,7 +161,8 @@ TEST(Renderer, PathTracerFurnaceImage) {
   const SensorImage img = render_sensor(scene, sensor, {});
   const double l0 = BandQuadrature(Band::preset("lwir"), 2, 0.0).blackbody_radiance(300.0);
   for (std::size_t i = 0; i < img.bands[0].radiance.size(); ++i) {
-    EXPECT_NEAR(img.bands[0].radiance[i], l0, 5.0 * img.bands[0].radiance_stderr[i] + 1e-6 * l0) << i;
+    EXPECT_NEAR(img.bands[0].radiance[i], l0, 5.0 * img.bands[0].radiance_stderr[i] + 1e-6 * l0)
+        << i;
     EXPECT_NEAR(img.bands[0].radiance[i] / l0, 1.0, 0.02) << i;
   }
 }
@@ -206,7 +209,8 @@ TEST(Renderer, PathTracerMeetsATargetRelativeStandardError) {
       continue;
     }
     for (const auto& band : a.bands)
-      EXPECT_LE(band.radiance_stderr[i], 0.02 * band.radiance[i] * (1 + 1e-6)) << band.band.name() << " " << i;
+      EXPECT_LE(band.radiance_stderr[i], 0.02 * band.radiance[i] * (1 + 1e-6))
+          << band.band.name() << " " << i;
   }
   EXPECT_LT(capped, static_cast<int>(pixels / 4));
   for (std::size_t i = 0; i < a.bands.size(); ++i)

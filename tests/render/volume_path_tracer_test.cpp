@@ -38,8 +38,9 @@ Estimate estimate(const Scene& scene, const Ray& ray, const SpectralNode& node, 
 
 SpectralNode node_at(const Scene& scene, double wavelength_um) {
   const std::vector<double> grey = {wavelength_um};
-  const SpectralNodes nodes(BandQuadrature(Band::flat("mono", wavelength_um - 1e-6, wavelength_um + 1e-6), 1, 0.0),
-                            scene.medium ? scene.medium->wavelengths_um() : grey);
+  const SpectralNodes nodes(
+      BandQuadrature(Band::flat("mono", wavelength_um - 1e-6, wavelength_um + 1e-6), 1, 0.0),
+      scene.medium ? scene.medium->wavelengths_um() : grey);
   return nodes.nodes()[0];
 }
 
@@ -124,7 +125,8 @@ TEST(VolumePathTracer, LambertianSurfacesReflectTheSkyTheyFace) {
   scene.surfaces.push_back(std::make_unique<GroundPlane>("g", SurfaceMaterial{290.0, 0.3}, 0.0));
   const SpectralNode node = node_at(scene, 10.0);
   const double exact = 0.3 * planck_radiance(10.0, 290.0) + 0.7 * planck_radiance(10.0, 260.0);
-  const Estimate e = estimate(scene, Ray{{0, 0, 2}, normalize(Vec3(0.3, 0.1, -1))}, node, 20000, 22);
+  const Estimate e =
+      estimate(scene, Ray{{0, 0, 2}, normalize(Vec3(0.3, 0.1, -1))}, node, 20000, 22);
   EXPECT_NEAR(e.mean, exact, 4.0 * e.stderr_mean + 1e-12 * exact);
   EXPECT_NEAR(e.mean / exact, 1.0, 0.005);
 }
@@ -156,10 +158,9 @@ TEST(VolumePathTracer, SkyNextEventEstimationIsUnbiased) {
 TEST(VolumePathTracer, IsothermalSlabMatchesClosedForm) {
   Scene scene;
   scene.surfaces.push_back(std::make_unique<GroundPlane>("g", SurfaceMaterial{280.0, 1.0}, -1.0));
-  scene.medium = std::make_shared<HomogeneousMedium>(BBox3({-100, -100, 0}, {100, 100, 2}),
-                                                     std::vector<double>{10.0}, std::vector<double>{0.4},
-                                                     std::vector<double>{0.0}, std::vector<double>{0.0},
-                                                     330.0);
+  scene.medium = std::make_shared<HomogeneousMedium>(
+      BBox3({-100, -100, 0}, {100, 100, 2}), std::vector<double>{10.0}, std::vector<double>{0.4},
+      std::vector<double>{0.0}, std::vector<double>{0.0}, 330.0);
   const SpectralNode node = node_at(scene, 10.0);
   const double tau = 0.4 * 2.0 / 0.8;
   const Ray ray{{0, 0, 5}, normalize(Vec3(0.6, 0, -0.8))};
@@ -214,7 +215,8 @@ TEST(VolumePathTracer, SingleScatteringOfSunlightInAThinSlab) {
     const Ray ray{{0, 0, -1}, view};
     const double mu = view.z, mu0 = std::sin(50.0 * std::numbers::pi / 180.0);
     const double cos_scatter = dot(view, scene.sun.direction());
-    const double p = (1 - g * g) / (4 * std::numbers::pi * std::pow(1 + g * g - 2 * g * cos_scatter, 1.5));
+    const double p =
+        (1 - g * g) / (4 * std::numbers::pi * std::pow(1 + g * g - 2 * g * cos_scatter, 1.5));
     const double a = sigma_s * (mu / mu0 - 1.0);
     const double exact = sigma_s * p * scene.sun.irradiance(0.55) * std::exp(-sigma_s * d / mu0) *
                          std::expm1(a * d / mu) / a;

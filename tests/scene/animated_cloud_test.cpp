@@ -4,7 +4,6 @@
 
 #include <cstring>
 #include <fstream>
-
 #include <nlohmann/json.hpp>
 
 #include "obscura/io/vdb_keyframe.h"
@@ -36,7 +35,10 @@ class AnimatedCloudTest : public testing::TempDirTest {
     std::ofstream(dir_ / "cloud.json") << nlohmann::json{
         {"keyframes", frames},
         {"lifecycle",
-         {{"init_end", 0}, {"loop_start", 0}, {"loop_end", 1}, {"loop_wrap", 1.0},
+         {{"init_end", 0},
+          {"loop_start", 0},
+          {"loop_end", 1},
+          {"loop_wrap", 1.0},
           {"extinction_start", 2}}},
         {"trajectory",
          {{"keys", {{{"time", 0.0}, {"position", {10, 0, 0}}, {"heading_deg", 0}}}},

@@ -1,11 +1,10 @@
-#include "obscura/scene/scene.h"
-
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <fstream>
 
 #include "obscura/core/error.h"
+#include "obscura/scene/scene.h"
 
 namespace obscura {
 namespace {
@@ -158,13 +157,14 @@ TEST(SceneLoader, SunNeedsThePathTracerAndSaneValues) {
 TEST(SceneLoader, SunSpectrumFromATable) {
   auto doc = minimal_scene();
   doc["render"]["method"] = "path-tracer";
-  doc["sun"] = {{"azimuth_deg", 120}, {"elevation_deg", 35},
-                {"irradiance_table", {{"wavelengths_um", {0.4, 0.6, 1.0}},
-                                      {"irradiance_w_m2_um", {1500, 1800, 700}}}}};
+  doc["sun"] = {{"azimuth_deg", 120},
+                {"elevation_deg", 35},
+                {"irradiance_table",
+                 {{"wavelengths_um", {0.4, 0.6, 1.0}}, {"irradiance_w_m2_um", {1500, 1800, 700}}}}};
   const Scene s = parse_scene(doc, "scene.json");
   EXPECT_NEAR(s.sun.irradiance(0.5), 1650.0, 1e-9);  // linear between rows
   EXPECT_NEAR(s.sun.irradiance(1.0), 700.0, 1e-9);
-  EXPECT_EQ(s.sun.irradiance(1.2), 0.0);               // zero outside the table
+  EXPECT_EQ(s.sun.irradiance(1.2), 0.0);  // zero outside the table
   doc["sun"]["irradiance_table"]["irradiance_w_m2_um"][1] = -3;
   EXPECT_NE(load_error(doc).find("/sun/irradiance_table/irradiance_w_m2_um/1"), std::string::npos);
   doc["sun"]["irradiance_table"]["irradiance_w_m2_um"] = {1, 2};
@@ -219,10 +219,11 @@ TEST(SceneLoader, TargetStandardErrorIsForThePathTracer) {
 TEST(SceneLoader, PhotonMapSettings) {
   auto doc = minimal_scene();
   doc["render"]["photon_map"] = {{"photons", 1000}};
-  EXPECT_NE(load_error(doc).find("/render/photon_map"), std::string::npos);  // not the photonmap method
+  EXPECT_NE(load_error(doc).find("/render/photon_map"),
+            std::string::npos);  // not the photonmap method
   doc["render"]["method"] = "photonmap";
-  doc["render"]["photon_map"] = {{"photons", 5000}, {"k", 30}, {"max_radius_m", 0.5}, {"step_m", 0.1},
-                                 {"form", "pure"}};
+  doc["render"]["photon_map"] = {
+      {"photons", 5000}, {"k", 30}, {"max_radius_m", 0.5}, {"step_m", 0.1}, {"form", "pure"}};
   const Scene s = parse_scene(doc, "scene.json");
   EXPECT_EQ(s.settings.photon_map.photons_per_node, 5000);
   EXPECT_EQ(s.settings.photon_map.k, 30);
@@ -273,8 +274,8 @@ namespace {
 TEST(SceneLoader, AtmosphereMetricsTargetAndEmissivityTable) {
   auto doc = minimal_scene();
   doc["atmosphere"] = {{"temperature", 285.0}, {"extinction_per_km", {{"mwir", 0.3}, {"*", 0.2}}}};
-  doc["metrics"] = {{"transmittance_threshold", 0.02}, {"screened_fraction", 0.8},
-                    {"background_margin_px", 5}};
+  doc["metrics"] = {
+      {"transmittance_threshold", 0.02}, {"screened_fraction", 0.8}, {"background_margin_px", 5}};
   doc["surfaces"][1]["target"] = true;
   doc["surfaces"][0]["emissivity"] = nlohmann::json::parse("[[4, 0.9], [10, 0.95]]");
   const Scene s = parse_scene(doc, "scene.json");
@@ -299,7 +300,8 @@ TEST(SceneLoader, BadAtmosphereMetricsAndEmissivityTablesAreRejected) {
     return load_error(doc);
   };
   // A band without a coefficient, naming the band and the sensor.
-  std::string m = with("atmosphere", {{"temperature", 285.0}, {"extinction_per_km", {{"mwir", 0.3}}}});
+  std::string m =
+      with("atmosphere", {{"temperature", 285.0}, {"extinction_per_km", {{"mwir", 0.3}}}});
   EXPECT_NE(m.find("/atmosphere/extinction_per_km"), std::string::npos) << m;
   EXPECT_NE(m.find("'8:12'"), std::string::npos) << m;
   m = with("atmosphere", {{"temperature", 285.0}, {"extinction_per_km", -1.0}});

@@ -36,7 +36,8 @@ std::vector<double> edges_on_table(std::vector<double> zenith_deg, int per_inter
   std::vector<double> e;
   if (zenith_deg.back() < 180.0) e.push_back(-1.0);
   for (std::size_t i = zenith_deg.size() - 1; i > 0; --i) {
-    const double c0 = std::cos(zenith_deg[i] * kPi / 180), c1 = std::cos(zenith_deg[i - 1] * kPi / 180);
+    const double c0 = std::cos(zenith_deg[i] * kPi / 180),
+                 c1 = std::cos(zenith_deg[i - 1] * kPi / 180);
     for (int k = 0; k < per_interval; ++k) e.push_back(c0 + (c1 - c0) * k / per_interval);
   }
   e.push_back(1.0);
@@ -75,7 +76,8 @@ TEST(Sky, BlackbodyAboveTheHorizonOnly) {
   EXPECT_DOUBLE_EQ(upper.radiance({0, 0, 1}, 10.0), b);
   EXPECT_EQ(upper.radiance({0, 0.6, -0.8}, 10.0), 0.0);
   // Sky view factor of a tilted plane, (1 + cos β)/2 (checked by brute force).
-  for (const Vec3 n : {Vec3(0, 0, 1), Vec3(1, 0, 0), normalize(Vec3(0.3, 0.2, -0.7)), Vec3(0, 0, -1)}) {
+  for (const Vec3 n :
+       {Vec3(0, 0, 1), Vec3(1, 0, 0), normalize(Vec3(0.3, 0.2, -0.7)), Vec3(0, 0, -1)}) {
     EXPECT_NEAR(upper.cosine_weighted_mean(n, 10.0), b * 0.5 * (1 + n.z), 1e-12 * b);
     EXPECT_NEAR(upper.cosine_weighted_mean(n, 10.0), brute_reflected(upper, n, 10.0), 2e-3 * b);
     EXPECT_DOUBLE_EQ(full.cosine_weighted_mean(n, 10.0), b);
@@ -90,11 +92,11 @@ TEST(Sky, TableIsBilinearInZenithAngleAndWavelength) {
   };
   EXPECT_NEAR(sky.radiance(dir(0), 8.0), 1.0, 1e-12);
   EXPECT_NEAR(sky.radiance(dir(45), 12.0), 2.6, 1e-12);
-  EXPECT_NEAR(sky.radiance(dir(10), 8.0), 1.1, 1e-12);                    // halfway in zenith
+  EXPECT_NEAR(sky.radiance(dir(10), 8.0), 1.1, 1e-12);  // halfway in zenith
   EXPECT_NEAR(sky.radiance(dir(80), 10.0), 0.5 * (0.5 * (3.0 + 3.5) + 0.5 * (5.0 + 4.0)), 1e-12);
-  EXPECT_NEAR(sky.radiance(dir(0), 5.0), 1.0, 1e-12);                     // clamped wavelength
+  EXPECT_NEAR(sky.radiance(dir(0), 5.0), 1.0, 1e-12);  // clamped wavelength
   EXPECT_NEAR(sky.radiance(dir(0), 20.0), 2.0, 1e-12);
-  EXPECT_EQ(sky.radiance(dir(91), 10.0), 0.0);                            // black below the horizon
+  EXPECT_EQ(sky.radiance(dir(91), 10.0), 0.0);  // black below the horizon
 }
 
 TEST(Sky, ReflectedRadianceMatchesBruteForce) {
@@ -163,12 +165,17 @@ TEST(Sky, BadTablesNameTheField) {
   };
   EXPECT_EQ(field_of([] { Sky::zenith_table({0, 45}, {10}, {{1}, {1}}); }), "zenith_deg/1");
   EXPECT_EQ(field_of([] { Sky::zenith_table({5, 90}, {10}, {{1}, {1}}); }), "zenith_deg/0");
-  EXPECT_EQ(field_of([] { Sky::zenith_table({0, 60, 50, 90}, {10}, {{1}, {1}, {1}, {1}}); }),
+  EXPECT_EQ(field_of([] {
+              Sky::zenith_table({0, 60, 50, 90}, {10}, {{1}, {1}, {1}, {1}});
+            }),
             "zenith_deg/2");
   EXPECT_EQ(field_of([] { Sky::zenith_table({0, 90}, {10}, {{1}}); }), "radiance");
   EXPECT_EQ(field_of([] { Sky::zenith_table({0, 90}, {10, 12}, {{1, 2}, {1}}); }), "radiance/1");
   EXPECT_EQ(field_of([] { Sky::zenith_table({0, 90}, {10}, {{1}, {-1}}); }), "radiance/1/0");
-  EXPECT_EQ(field_of([] { Sky::zenith_table({0, 90}, {12, 10}, {{1, 1}, {1, 1}}); }), "wavelengths_um/1");
+  EXPECT_EQ(field_of([] {
+              Sky::zenith_table({0, 90}, {12, 10}, {{1, 1}, {1, 1}});
+            }),
+            "wavelengths_um/1");
 }
 
 }  // namespace

@@ -265,7 +265,8 @@ inline std::string invalid_failure(long long invalid, const char* what) {
 inline Chi2Result conclude(const std::vector<double>& observed, const std::vector<double>& expected,
                            double pdf_integral, const std::function<std::string(int)>& label,
                            const std::string& rows, long long invalid, const char* what) {
-  Chi2Result r = finish(pearson(observed, expected, label), observed, expected, pdf_integral, label, rows);
+  Chi2Result r =
+      finish(pearson(observed, expected, label), observed, expected, pdf_integral, label, rows);
   if (invalid > 0) {
     r.statistic = std::numeric_limits<double>::infinity();
     r.p_value = 0.0;

@@ -7,9 +7,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <string>
-
 #include <nlohmann/json.hpp>
+#include <string>
 
 namespace obscura::testing {
 
@@ -29,7 +28,10 @@ inline nlohmann::json write_example_manifest_keyframes(const std::filesystem::pa
   }
   return {{"keyframes", frames},
           {"lifecycle",
-           {{"init_end", 3}, {"loop_start", 4}, {"loop_end", 7}, {"loop_wrap", 1.0},
+           {{"init_end", 3},
+            {"loop_start", 4},
+            {"loop_end", 7},
+            {"loop_wrap", 1.0},
             {"extinction_start", 8}}},
           {"trajectory",
            {{"keys",

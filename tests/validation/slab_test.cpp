@@ -35,9 +35,9 @@ double z_for(int k) {
   if (diff <= std::max(z * r.stderr_mean, 0.01 * reference) && r.stderr_mean <= 0.01 * reference)
     return ::testing::AssertionSuccess();
   return ::testing::AssertionFailure()
-         << r.case_name << " " << r.quantity << ": obtained " << r.obtained << " ± " << r.stderr_mean
-         << ", reference " << reference << " (relative error " << (r.obtained - reference) / reference
-         << ")";
+         << r.case_name << " " << r.quantity << ": obtained " << r.obtained << " ± "
+         << r.stderr_mean << ", reference " << reference << " (relative error "
+         << (r.obtained - reference) / reference << ")";
 }
 
 const ValidationRow& quantity(const std::vector<ValidationRow>& rows, const std::string& q) {
@@ -92,8 +92,10 @@ TEST(SlabValidation, VanDeHulstPublishedProblems) {
     ASSERT_TRUE(ref) << "problem " << p.problem << " missing from " << kTable;
     const auto rows = validate_slab(p.slab, ref, ValidationOptions{});
     EXPECT_TRUE(agrees(quantity(rows, "R"), ref->r, z)) << "problem " << p.problem;
-    if (ref->t > 0) EXPECT_TRUE(agrees(quantity(rows, "T"), ref->t, z)) << "problem " << p.problem;
-    else EXPECT_LT(quantity(rows, "T").obtained, 1e-6) << "problem " << p.problem;
+    if (ref->t > 0)
+      EXPECT_TRUE(agrees(quantity(rows, "T"), ref->t, z)) << "problem " << p.problem;
+    else
+      EXPECT_LT(quantity(rows, "T").obtained, 1e-6) << "problem " << p.problem;
   }
 }
 
@@ -121,11 +123,13 @@ TEST(SlabValidation, ConvergedDisortGrid) {
 
 TEST(SlabValidation, UnscatteredTransmittanceHasItsClosedForm) {
   // T_direct is judged against e^{−τ/μ0} or 2 E3(τ) even with no table row.
-  const auto normal = validate_slab({0.7, 0.37, 0.2, SlabIncidence::kCollimated, 0.6}, std::nullopt, {});
+  const auto normal =
+      validate_slab({0.7, 0.37, 0.2, SlabIncidence::kCollimated, 0.6}, std::nullopt, {});
   EXPECT_NEAR(quantity(normal, "T_direct").reference, std::exp(-0.37 / 0.6), 1e-15);
   EXPECT_TRUE(quantity(normal, "T_direct").pass);
   EXPECT_FALSE(quantity(normal, "R").judged);
-  const auto diffuse = validate_slab({0.7, 1.0, 0.2, SlabIncidence::kDiffuse, 1.0}, std::nullopt, {});
+  const auto diffuse =
+      validate_slab({0.7, 1.0, 0.2, SlabIncidence::kDiffuse, 1.0}, std::nullopt, {});
   // 2 E3(1) = 0.219383934 (the table's analytic T_unscattered; A&S Table 5.1).
   EXPECT_NEAR(quantity(diffuse, "T_direct").reference, 0.219383934, 1e-9);
   EXPECT_TRUE(quantity(diffuse, "T_direct").pass);
@@ -145,7 +149,8 @@ TEST(SlabValidation, ANarrowSlabLosesLightThroughItsEdges) {
   EXPECT_GT(lost, 0.1);
   // The conservative-limit check: R + T of the wide slab is 1 − absorbed, and
   // with albedo 0.99 and τ = 4 the DISORT reference gives R + T = 0.9205.
-  EXPECT_NEAR(quantity(w, "R").obtained + quantity(w, "T").obtained, 0.645046554 + 0.275480136, 0.01);
+  EXPECT_NEAR(quantity(w, "R").obtained + quantity(w, "T").obtained, 0.645046554 + 0.275480136,
+              0.01);
 }
 
 TEST(SlabValidation, ResultsDoNotDependOnTheThreadCount) {

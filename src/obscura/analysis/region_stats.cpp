@@ -2,7 +2,8 @@
 
 namespace obscura {
 
-std::vector<RegionStats> region_stats(const SensorImage& image, const std::vector<PixelRegion>& regions,
+std::vector<RegionStats> region_stats(const SensorImage& image,
+                                      const std::vector<PixelRegion>& regions,
                                       int spectral_nodes_per_band) {
   std::vector<PixelRegion> all = {{"image", image.sensor, 0, 0, image.width, image.height}};
   for (const auto& r : regions)
@@ -24,8 +25,8 @@ std::vector<RegionStats> region_stats(const SensorImage& image, const std::vecto
       s.mean_radiance = l / s.pixels;
       s.mean_transmittance = t / s.pixels;
       // The same quadrature as the renderer's, so a uniform blackbody region gives its temperature.
-      s.mean_apparent_temperature =
-          BandQuadrature(b.band, spectral_nodes_per_band, 0.0).apparent_temperature(s.mean_radiance);
+      s.mean_apparent_temperature = BandQuadrature(b.band, spectral_nodes_per_band, 0.0)
+                                        .apparent_temperature(s.mean_radiance);
       out.push_back(s);
     }
   }

@@ -1,11 +1,11 @@
 #include "obscura/analysis/screening_metrics.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <utility>
-
-#include <fmt/format.h>
 
 #include "obscura/core/error.h"
 
@@ -40,10 +40,10 @@ std::vector<ScreeningMetrics> screening_metrics(const SensorImage& image, const 
                                                 const MetricsSettings& settings,
                                                 int spectral_nodes_per_band, double time_s) {
   if (image.width != mask.width || image.height != mask.height)
-    throw Error(fmt::format("screening metrics: the {}x{} image of sensor {} does not match the {}x{} "
-                            "target mask of {}",
-                            image.width, image.height, image.sensor, mask.width, mask.height,
-                            mask.sensor));
+    throw Error(
+        fmt::format("screening metrics: the {}x{} image of sensor {} does not match the {}x{} "
+                    "target mask of {}",
+                    image.width, image.height, image.sensor, mask.width, mask.height, mask.sensor));
   std::vector<ScreeningMetrics> out;
   std::vector<double> target_t;
   target_t.reserve(static_cast<std::size_t>(mask.target_pixels));
@@ -157,7 +157,8 @@ std::vector<std::vector<const ScreeningMetrics*>> group_screening_series(
       g->push_back(&r);
   }
   for (auto& g : groups)
-    std::stable_sort(g.begin(), g.end(), [](const auto* a, const auto* b) { return a->time_s < b->time_s; });
+    std::stable_sort(g.begin(), g.end(),
+                     [](const auto* a, const auto* b) { return a->time_s < b->time_s; });
   return groups;
 }
 
@@ -180,12 +181,14 @@ std::vector<ScreeningSeries> summarize_screening(const std::vector<ScreeningMetr
           (std::isnan(s.max_screened_fraction) || m->screened_fraction > s.max_screened_fraction))
         s.max_screened_fraction = m->screened_fraction;
       if (!std::isnan(m->transmittance_mean) &&
-          (std::isnan(s.min_transmittance_mean) || m->transmittance_mean < s.min_transmittance_mean)) {
+          (std::isnan(s.min_transmittance_mean) ||
+           m->transmittance_mean < s.min_transmittance_mean)) {
         s.min_transmittance_mean = m->transmittance_mean;
         s.min_transmittance_mean_time_s = m->time_s;
       }
     }
-    s.screening = screening_times(s.times_s, fractions, settings.screened_fraction, reference_time_s);
+    s.screening =
+        screening_times(s.times_s, fractions, settings.screened_fraction, reference_time_s);
     out.push_back(std::move(s));
   }
   return out;

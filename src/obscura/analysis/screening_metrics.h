@@ -116,8 +116,8 @@ struct ScreeningSeries {
   int target_pixels = 0;
   std::vector<double> times_s;  // the frames', increasing
   ScreeningTimes screening;
-  double max_screened_fraction = 0;       // NaN with no target pixel
-  double min_transmittance_mean = 0;      // lowest frame mean; NaN with no target pixel
+  double max_screened_fraction = 0;          // NaN with no target pixel
+  double min_transmittance_mean = 0;         // lowest frame mean; NaN with no target pixel
   double min_transmittance_mean_time_s = 0;  // when it occurred (the first such frame)
 };
 

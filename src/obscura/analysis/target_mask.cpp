@@ -1,9 +1,9 @@
 #include "obscura/analysis/target_mask.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <limits>
-
-#include <fmt/format.h>
 
 #include "obscura/core/error.h"
 #include "obscura/core/parallel.h"
@@ -28,7 +28,8 @@ TargetMask compute_target_mask(const Scene& scene, const Sensor& sensor, int bac
       // The pixel centre, as the renderer's single-sample ray.
       const Ray ray = sensor.camera.generate_ray(x + 0.5, y + 0.5);
       SurfaceHit hit;
-      if (intersect_surfaces(scene.surfaces, ray, 0.0, std::numeric_limits<double>::infinity(), hit) &&
+      if (intersect_surfaces(scene.surfaces, ray, 0.0, std::numeric_limits<double>::infinity(),
+                             hit) &&
           scene.surfaces[hit.surface]->is_target())
         mask.labels[row * mask.width + x] = MaskLabel::kTarget;
     }

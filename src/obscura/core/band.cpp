@@ -1,13 +1,13 @@
 #include "obscura/core/band.h"
 
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
 #include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <limits>
 #include <numbers>
-
-#include <fmt/format.h>
-#include <fmt/ranges.h>
 
 #include "obscura/core/error.h"
 #include "obscura/core/planck.h"
@@ -24,7 +24,8 @@ Band Band::tabulated(std::string name, std::vector<ResponsePoint> table) {
   for (std::size_t i = 0; i < table.size(); ++i) {
     const auto& p = table[i];
     if (!(std::isfinite(p.wavelength_um) && p.wavelength_um > 0.0))
-      throw InputError("", field, fmt::format("wavelength {} µm must be finite and > 0", p.wavelength_um));
+      throw InputError("", field,
+                       fmt::format("wavelength {} µm must be finite and > 0", p.wavelength_um));
     if (!(std::isfinite(p.response) && p.response >= 0.0))
       throw InputError("", field, fmt::format("response {} must be finite and >= 0", p.response));
     if (i > 0 && !(p.wavelength_um > table[i - 1].wavelength_um))
@@ -56,9 +57,9 @@ Band Band::parse(const std::string& text, const std::string& field) {
   if (colon == std::string::npos) {
     const auto names = preset_names();
     if (std::find(names.begin(), names.end(), text) != names.end()) return preset(text);
-    throw InputError("", field,
-                     fmt::format("'{}' is neither LO:HI in µm nor a preset ({})", text,
-                                 fmt::join(names, ", ")));
+    throw InputError(
+        "", field,
+        fmt::format("'{}' is neither LO:HI in µm nor a preset ({})", text, fmt::join(names, ", ")));
   }
   auto to_double = [&](std::string_view s) {
     double v = 0;
@@ -101,7 +102,10 @@ void gauss_legendre(int n, std::vector<double>& nodes, std::vector<double>& weig
         p0 = p1;
         p1 = p2;
       }
-      if (n == 1) { p1 = x; p0 = 1.0; }
+      if (n == 1) {
+        p1 = x;
+        p0 = 1.0;
+      }
       dp = n * (x * p1 - p0) / (x * x - 1.0);
       const double dx = p1 / dp;
       x -= dx;
@@ -184,7 +188,10 @@ double BandQuadrature::apparent_temperature(double band_radiance) const {
   for (int iter = 0; iter < 200; ++iter) {
     const double l = blackbody_radiance(t);
     const double f = (l > 0 ? std::log(l) : -1e300) - target;
-    if (f > 0) hi = t; else lo = t;
+    if (f > 0)
+      hi = t;
+    else
+      lo = t;
     const double df = blackbody_radiance_dT(t) / l;
     double next = t - f / df;
     if (!(next > lo && next < hi) || !std::isfinite(next)) next = 0.5 * (lo + hi);

@@ -14,13 +14,20 @@ struct BBox3 {
           -std::numeric_limits<double>::infinity()};
 
   constexpr BBox3() = default;
-  constexpr BBox3(const Vec3& a, const Vec3& b) : lo(component_min(a, b)), hi(component_max(a, b)) {}
+  constexpr BBox3(const Vec3& a, const Vec3& b)
+      : lo(component_min(a, b)), hi(component_max(a, b)) {}
 
   bool empty() const { return lo.x > hi.x || lo.y > hi.y || lo.z > hi.z; }
   Vec3 extent() const { return hi - lo; }
   Vec3 center() const { return (lo + hi) * 0.5; }
-  void expand(const Vec3& p) { lo = component_min(lo, p); hi = component_max(hi, p); }
-  void expand(const BBox3& b) { lo = component_min(lo, b.lo); hi = component_max(hi, b.hi); }
+  void expand(const Vec3& p) {
+    lo = component_min(lo, p);
+    hi = component_max(hi, p);
+  }
+  void expand(const BBox3& b) {
+    lo = component_min(lo, b.lo);
+    hi = component_max(hi, b.hi);
+  }
   bool contains(const Vec3& p) const {
     return p.x >= lo.x && p.x <= hi.x && p.y >= lo.y && p.y <= hi.y && p.z >= lo.z && p.z <= hi.z;
   }

@@ -3,7 +3,6 @@
 // stream, selected by its index, so a result never depends on which thread
 // ran which pixel or in what order (O'Neill 2014, PCG: stream selection).
 #include <cstdint>
-
 #include <pcg_random.hpp>
 
 namespace obscura {

@@ -56,7 +56,8 @@ class PixelWriter {
     // premultiplication changes nothing.
     const std::uint32_t argb = 0xff000000u | (std::uint32_t{c[0]} << 16) |
                                (std::uint32_t{c[1]} << 8) | std::uint32_t{c[2]};
-    std::memcpy(data_ + static_cast<std::size_t>(y) * stride_ + static_cast<std::size_t>(x) * 4, &argb, 4);
+    std::memcpy(data_ + static_cast<std::size_t>(y) * stride_ + static_cast<std::size_t>(x) * 4,
+                &argb, 4);
   }
 
  private:
@@ -85,14 +86,16 @@ inline cairo_font_extents_t font_extents(cairo_t* cr) {
 // uint32 with alpha on top; the canvases are opaque, so premultiplication
 // changes nothing.
 inline std::vector<std::uint8_t> surface_rgb(cairo_surface_t* surface) {
-  const int width = cairo_image_surface_get_width(surface), height = cairo_image_surface_get_height(surface);
+  const int width = cairo_image_surface_get_width(surface),
+            height = cairo_image_surface_get_height(surface);
   const unsigned char* data = cairo_image_surface_get_data(surface);
   const int stride = cairo_image_surface_get_stride(surface);
   std::vector<std::uint8_t> rgb(static_cast<std::size_t>(width) * height * 3);
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x) {
       std::uint32_t argb;
-      std::memcpy(&argb, data + static_cast<std::size_t>(y) * stride + static_cast<std::size_t>(x) * 4, 4);
+      std::memcpy(&argb,
+                  data + static_cast<std::size_t>(y) * stride + static_cast<std::size_t>(x) * 4, 4);
       std::uint8_t* p = &rgb[(static_cast<std::size_t>(y) * width + x) * 3];
       p[0] = static_cast<std::uint8_t>(argb >> 16);
       p[1] = static_cast<std::uint8_t>(argb >> 8);

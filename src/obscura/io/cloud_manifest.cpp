@@ -1,8 +1,8 @@
 #include "obscura/io/cloud_manifest.h"
 
-#include <limits>
-
 #include <fmt/format.h>
+
+#include <limits>
 
 #include "obscura/io/json_reader.h"
 
@@ -94,7 +94,8 @@ Trajectory parse_trajectory(JsonObject o) {
   }
   const Vec3 drift = o.vec3_or("drift_velocity", {0, 0, 0});
   o.finish();
-  return rooted(o.file(), [&] { return Trajectory(std::move(keys), interpolation, drift, o.file()); });
+  return rooted(o.file(),
+                [&] { return Trajectory(std::move(keys), interpolation, drift, o.file()); });
 }
 
 }  // namespace

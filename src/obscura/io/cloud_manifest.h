@@ -4,9 +4,8 @@
 // (docs/time-varying-clouds.md, "Manifest"). Reading it checks that every
 // keyframe file exists but opens none: keyframes are read on demand.
 #include <filesystem>
-#include <vector>
-
 #include <nlohmann/json.hpp>
+#include <vector>
 
 #include "obscura/medium/lifecycle.h"
 #include "obscura/medium/trajectory.h"

@@ -1,13 +1,13 @@
 #include "obscura/io/contact_sheet.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
 #include <map>
 #include <utility>
-
-#include <fmt/format.h>
 
 #include "obscura/core/error.h"
 #include "obscura/io/cairo_canvas.h"
@@ -18,12 +18,12 @@ namespace {
 
 // Layout, px (font sizes in cairo user units = px on an image surface).
 constexpr int kMargin = 12;
-constexpr int kTitleGap = 8;      // title to the column headers
-constexpr int kHeaderGap = 4;     // column headers to the first row
-constexpr int kCellGap = 6;       // between columns and between rows
-constexpr int kLabelGap = 12;     // row labels to the first column
-constexpr int kLineGap = 2;       // between the lines of a row label
-constexpr int kBarWidth = 100;    // the row's colour bar under its range
+constexpr int kTitleGap = 8;    // title to the column headers
+constexpr int kHeaderGap = 4;   // column headers to the first row
+constexpr int kCellGap = 6;     // between columns and between rows
+constexpr int kLabelGap = 12;   // row labels to the first column
+constexpr int kLineGap = 2;     // between the lines of a row label
+constexpr int kBarWidth = 100;  // the row's colour bar under its range
 constexpr int kBarHeight = 8;
 constexpr int kMinCellHeight = 8;
 constexpr int kMaxSheetSize = 16384;
@@ -50,7 +50,8 @@ std::vector<std::vector<std::pair<int, double>>> axis_footprints(int n_in, int n
       continue;
     }
     const double a = i * scale, b = (i + 1) * scale;
-    for (int k = static_cast<int>(std::floor(a)); k < std::min(n_in, static_cast<int>(std::ceil(b))); ++k) {
+    for (int k = static_cast<int>(std::floor(a));
+         k < std::min(n_in, static_cast<int>(std::ceil(b))); ++k) {
       const double w = std::min(b, k + 1.0) - std::max(a, static_cast<double>(k));
       if (w > 0) out[i].push_back({k, w});
     }
@@ -66,9 +67,11 @@ std::string row_range_text(const ContactSheetRow& row, double lo, double hi) {
 void validate(const ContactSheet& sheet) {
   if (sheet.times_s.empty()) throw Error("contact sheet: no columns (frame times)");
   if (sheet.rows.empty()) throw Error("contact sheet: no rows");
-  if (sheet.cell_height_px < kMinCellHeight || sheet.max_size_px < 64 || sheet.max_size_px > kMaxSheetSize)
-    throw Error(fmt::format("contact sheet: cell height {} px (>= {}) or size cap {} px (64…{}) out of range",
-                            sheet.cell_height_px, kMinCellHeight, sheet.max_size_px, kMaxSheetSize));
+  if (sheet.cell_height_px < kMinCellHeight || sheet.max_size_px < 64 ||
+      sheet.max_size_px > kMaxSheetSize)
+    throw Error(fmt::format(
+        "contact sheet: cell height {} px (>= {}) or size cap {} px (64…{}) out of range",
+        sheet.cell_height_px, kMinCellHeight, sheet.max_size_px, kMaxSheetSize));
   for (const ContactSheetRow& row : sheet.rows) {
     if (row.cells.size() != sheet.times_s.size())
       throw Error(fmt::format("contact sheet: row '{}' has {} cells for {} columns", row.label,
@@ -93,12 +96,14 @@ std::pair<double, double> row_range(const ContactSheetRow& row) {
   double lo = std::numeric_limits<double>::infinity(), hi = -lo;
   for (const ContactSheetCell& c : row.cells)
     for (float v : c.values)
-      if (std::isfinite(v)) lo = std::min(lo, static_cast<double>(v)), hi = std::max(hi, static_cast<double>(v));
+      if (std::isfinite(v))
+        lo = std::min(lo, static_cast<double>(v)), hi = std::max(hi, static_cast<double>(v));
   if (!(lo <= hi)) lo = 0.0, hi = 1.0;  // no finite value
   if (row.min) lo = *row.min;
   if (row.max) hi = *row.max;
   if (!std::isfinite(lo) || !std::isfinite(hi) || lo > hi)
-    throw Error(fmt::format("contact sheet: row '{}': invalid colour range [{}, {}]", row.label, lo, hi));
+    throw Error(
+        fmt::format("contact sheet: row '{}': invalid colour range [{}, {}]", row.label, lo, hi));
   return {lo, hi};
 }
 
@@ -137,7 +142,8 @@ std::vector<float> resample_image(int width, int height, const std::vector<float
 
 ContactSheetCell contact_sheet_thumbnail(int width, int height, const std::vector<float>& values,
                                          int max_side_px) {
-  if (max_side_px < 1) throw Error(fmt::format("thumbnail: max side {} px must be >= 1", max_side_px));
+  if (max_side_px < 1)
+    throw Error(fmt::format("thumbnail: max side {} px must be >= 1", max_side_px));
   const double s = std::min(1.0, static_cast<double>(max_side_px) / std::max(width, height));
   ContactSheetCell c;
   c.width = std::max(1, static_cast<int>(std::lround(width * s)));
@@ -175,7 +181,8 @@ ContactSheetRaster render_contact_sheet(const ContactSheet& sheet) {
   set_font(measure.get(), kTitleFontSize);
   const cairo_font_extents_t title_font = font_extents(measure.get());
   const double title_w = sheet.title.empty() ? 0 : text_advance(measure.get(), sheet.title);
-  const int title_h = sheet.title.empty() ? 0 : static_cast<int>(std::ceil(title_font.height)) + kTitleGap;
+  const int title_h =
+      sheet.title.empty() ? 0 : static_cast<int>(std::ceil(title_font.height)) + kTitleGap;
   set_font(measure.get(), kLabelFontSize);
   const cairo_font_extents_t label_font = font_extents(measure.get());
   std::vector<std::string> headers;
@@ -185,7 +192,8 @@ ContactSheetRaster render_contact_sheet(const ContactSheet& sheet) {
     header_w = std::max(header_w, text_advance(measure.get(), headers.back()));
   }
   double label_w = kBarWidth;
-  for (const ContactSheetRow& row : sheet.rows) label_w = std::max(label_w, text_advance(measure.get(), row.label));
+  for (const ContactSheetRow& row : sheet.rows)
+    label_w = std::max(label_w, text_advance(measure.get(), row.label));
   set_font(measure.get(), kDetailFontSize);
   const cairo_font_extents_t detail_font = font_extents(measure.get());
   std::vector<std::string> ranges;
@@ -198,8 +206,9 @@ ContactSheetRaster render_contact_sheet(const ContactSheet& sheet) {
                         text_advance(measure.get(), ranges.back())});
   }
   const int header_h = static_cast<int>(std::ceil(label_font.height)) + kHeaderGap;
-  const int label_block_h = static_cast<int>(std::ceil(label_font.height + 2 * detail_font.height)) +
-                            3 * kLineGap + kBarHeight;
+  const int label_block_h =
+      static_cast<int>(std::ceil(label_font.height + 2 * detail_font.height)) + 3 * kLineGap +
+      kBarHeight;
   const int label_col = static_cast<int>(std::ceil(label_w)) + kLabelGap;
 
   // The largest cell height up to the requested one that keeps the sheet
@@ -211,32 +220,39 @@ ContactSheetRaster render_contact_sheet(const ContactSheet& sheet) {
     out.cell_widths.clear();
     col_w = static_cast<int>(std::ceil(header_w));
     for (const auto& [w, hh] : sizes) {
-      const int cw = hh > 0 ? std::max(1, static_cast<int>(std::lround(static_cast<double>(w) * h / hh))) : 0;
+      const int cw =
+          hh > 0 ? std::max(1, static_cast<int>(std::lround(static_cast<double>(w) * h / hh))) : 0;
       out.cell_widths.push_back(cw);
       col_w = std::max(col_w, cw);
     }
     row_h = std::max(h, label_block_h);
-    out.width = std::max(2 * kMargin + label_col + static_cast<int>(cols) * (col_w + kCellGap) - kCellGap,
-                         2 * kMargin + static_cast<int>(std::ceil(title_w)));
-    out.height = 2 * kMargin + title_h + header_h + static_cast<int>(rows) * (row_h + kCellGap) - kCellGap;
+    out.width =
+        std::max(2 * kMargin + label_col + static_cast<int>(cols) * (col_w + kCellGap) - kCellGap,
+                 2 * kMargin + static_cast<int>(std::ceil(title_w)));
+    out.height =
+        2 * kMargin + title_h + header_h + static_cast<int>(rows) * (row_h + kCellGap) - kCellGap;
     return out.width <= sheet.max_size_px && out.height <= sheet.max_size_px;
   };
   int h = sheet.cell_height_px;
   while (!layout(h)) {
     if (h == kMinCellHeight)
-      throw Error(fmt::format("contact sheet: {} rows × {} columns do not fit in {} px with cells {} px tall",
-                              rows, cols, sheet.max_size_px, kMinCellHeight));
+      throw Error(fmt::format(
+          "contact sheet: {} rows × {} columns do not fit in {} px with cells {} px tall", rows,
+          cols, sheet.max_size_px, kMinCellHeight));
     h = std::max(kMinCellHeight, static_cast<int>(h * 0.9));
   }
   out.cell_height = h;
   const int grid_x = kMargin + label_col, grid_y = kMargin + title_h + header_h;
-  for (std::size_t c = 0; c < cols; ++c) out.cell_x.push_back(grid_x + static_cast<int>(c) * (col_w + kCellGap));
-  for (std::size_t r = 0; r < rows; ++r) out.cell_y.push_back(grid_y + static_cast<int>(r) * (row_h + kCellGap));
+  for (std::size_t c = 0; c < cols; ++c)
+    out.cell_x.push_back(grid_x + static_cast<int>(c) * (col_w + kCellGap));
+  for (std::size_t r = 0; r < rows; ++r)
+    out.cell_y.push_back(grid_y + static_cast<int>(r) * (row_h + kCellGap));
 
   SurfacePtr surface = cairo_canvas::create_surface(out.width, out.height, /*white=*/true);
   // Cells and colour bars straight into the surface (no filtering), text after.
   const cairo_canvas::PixelWriter canvas(surface.get());
-  const int bar_y_offset = static_cast<int>(std::ceil(label_font.height + 2 * detail_font.height)) + 3 * kLineGap;
+  const int bar_y_offset =
+      static_cast<int>(std::ceil(label_font.height + 2 * detail_font.height)) + 3 * kLineGap;
   for (std::size_t r = 0; r < rows; ++r) {
     const ContactSheetRow& row = sheet.rows[r];
     const double lo = out.row_min[r], span = out.row_max[r] - lo;
@@ -258,7 +274,8 @@ ContactSheetRaster render_contact_sheet(const ContactSheet& sheet) {
     }
     for (int x = 0; x < kBarWidth; ++x) {
       const auto rgb = colormap_rgb(row.colormap, (x + 0.5) / kBarWidth);
-      for (int y = 0; y < kBarHeight; ++y) canvas.put(kMargin + x, out.cell_y[r] + bar_y_offset + y, rgb);
+      for (int y = 0; y < kBarHeight; ++y)
+        canvas.put(kMargin + x, out.cell_y[r] + bar_y_offset + y, rgb);
     }
   }
   cairo_surface_mark_dirty(surface.get());

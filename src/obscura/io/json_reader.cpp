@@ -1,12 +1,12 @@
 #include "obscura/io/json_reader.h"
 
+#include <fmt/format.h>
+
 #include <cerrno>
 #include <cmath>
 #include <cstring>
 #include <fstream>
 #include <sstream>
-
-#include <fmt/format.h>
 
 namespace obscura {
 
@@ -22,7 +22,12 @@ nlohmann::json read_json_file(const std::string& path) {
     // Convert the byte offset into line:column for the message.
     std::size_t line = 1, column = 1;
     for (std::size_t i = 0; i + 1 < e.byte && i < text.size(); ++i) {
-      if (text[i] == '\n') { ++line; column = 1; } else { ++column; }
+      if (text[i] == '\n') {
+        ++line;
+        column = 1;
+      } else {
+        ++column;
+      }
     }
     std::string what = e.what();
     const auto pos = what.find("syntax error");
@@ -108,7 +113,8 @@ std::string JsonObject::string_or(const std::string& key, const std::string& fal
 bool JsonObject::boolean_or(const std::string& key, bool fallback) {
   if (!has(key)) return fallback;
   const auto& v = get(key);
-  if (!v.is_boolean()) throw error(key, fmt::format("expected true or false, found {}", type_name(v)));
+  if (!v.is_boolean())
+    throw error(key, fmt::format("expected true or false, found {}", type_name(v)));
   return v.get<bool>();
 }
 
@@ -160,8 +166,9 @@ void JsonObject::finish() const {
     if (!used_.count(it.key())) {
       std::string known;
       for (const auto& k : known_) known += (known.empty() ? "" : ", ") + k;
-      throw InputError(file_, path_of(it.key()),
-                       fmt::format("unknown field (expected one of: {})", known.empty() ? "none" : known));
+      throw InputError(
+          file_, path_of(it.key()),
+          fmt::format("unknown field (expected one of: {})", known.empty() ? "none" : known));
     }
   }
 }

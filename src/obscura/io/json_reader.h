@@ -2,12 +2,11 @@
 // Typed access to a JSON object that names the file and the JSON path
 // ("/sensors/0/fov_deg") in every error, and reports keys nobody asked for as
 // errors, so a typo in a scene is never silently ignored (pbrt-v4 ReportUnused).
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <set>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "obscura/core/error.h"
 #include "obscura/core/vec3.h"

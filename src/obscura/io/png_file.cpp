@@ -1,5 +1,6 @@
 #include "obscura/io/png_file.h"
 
+#include <fmt/format.h>
 #include <png.h>
 
 #include <algorithm>
@@ -9,8 +10,6 @@
 #include <cstring>
 #include <memory>
 #include <vector>
-
-#include <fmt/format.h>
 
 #include "obscura/core/error.h"
 #include "obscura/io/atomic_file.h"
@@ -156,9 +155,9 @@ void write_rgb_png(const std::filesystem::path& path, int width, int height,
   const std::string file = path.string();
   validate_text_chunks(file, text_chunks);
   if (width <= 0 || height <= 0 || rgb.size() != static_cast<std::size_t>(width) * height * 3)
-    throw Error(fmt::format("cannot write PNG {}: {}×{} pixels need {} bytes of RGB, got {}", file, width,
-                            height, static_cast<std::size_t>(std::max(width, 0)) * std::max(height, 0) * 3,
-                            rgb.size()));
+    throw Error(fmt::format(
+        "cannot write PNG {}: {}×{} pixels need {} bytes of RGB, got {}", file, width, height,
+        static_cast<std::size_t>(std::max(width, 0)) * std::max(height, 0) * 3, rgb.size()));
   // libpng wants mutable char* for keys and values; these copies outlive the write.
   std::vector<std::string> strings;
   strings.reserve(2 * text_chunks.size());
@@ -182,7 +181,8 @@ void write_rgb_png(const std::filesystem::path& path, int width, int height,
     throw Error(fmt::format("cannot open {}: {}", out.temp_path().string(), std::strerror(errno)));
   }
   PngErrorState error;
-  const bool ok = encode_png(f, width, height, rows.data(), texts.data(), static_cast<int>(texts.size()), &error);
+  const bool ok = encode_png(f, width, height, rows.data(), texts.data(),
+                             static_cast<int>(texts.size()), &error);
   const bool write_failed = std::ferror(f) != 0;
   const bool close_failed = std::fclose(f) != 0;
   if (!ok) throw Error(fmt::format("cannot write PNG {}: {}", file, error.message));

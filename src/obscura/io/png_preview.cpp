@@ -1,6 +1,5 @@
 #include "obscura/io/png_preview.h"
 
-#include "obscura/io/cairo_canvas.h"
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -15,6 +14,7 @@
 #include <utility>
 
 #include "obscura/core/error.h"
+#include "obscura/io/cairo_canvas.h"
 #include "obscura/io/png_file.h"
 
 namespace obscura {

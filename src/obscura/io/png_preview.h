@@ -3,7 +3,6 @@
 // upscaled), a title, and a vertical colour bar with tick labels and units.
 // Numbers for analysis belong in the EXR; the PNG carries the same provenance
 // as text chunks so a preview found on its own can still be traced.
-#include "obscura/io/png_file.h"
 #include <array>
 #include <cstdint>
 #include <filesystem>
@@ -11,6 +10,8 @@
 #include <optional>
 #include <string>
 #include <vector>
+
+#include "obscura/io/png_file.h"
 
 namespace obscura {
 

@@ -24,9 +24,10 @@ std::vector<std::filesystem::path> write_sensor_image(const std::filesystem::pat
   std::vector<std::filesystem::path> written;
   const std::string prov = provenance.to_string();
   std::vector<ExrChannel> channels;
-  std::map<std::string, std::string> attributes = {{"obscura.provenance", prov},
-                                                   {"obscura.sensor", image.sensor},
-                                                   {"obscura.time_s", fmt::format("{:.17g}", time_s)}};
+  std::map<std::string, std::string> attributes = {
+      {"obscura.provenance", prov},
+      {"obscura.sensor", image.sensor},
+      {"obscura.time_s", fmt::format("{:.17g}", time_s)}};
   for (const BandImage& b : image.bands) {
     const std::string n = b.band.name();
     channels.push_back({n + ".radiance", b.radiance});
@@ -39,8 +40,8 @@ std::vector<std::filesystem::path> write_sensor_image(const std::filesystem::pat
       channels.push_back({n + ".radiance_stderr", b.radiance_stderr});
       attributes["obscura.units." + n + ".radiance_stderr"] = "W m-2 sr-1";
     }
-    attributes["obscura.band." + n] =
-        fmt::format("{}:{} um, {} response points", b.band.lo_um(), b.band.hi_um(), b.band.table().size());
+    attributes["obscura.band." + n] = fmt::format("{}:{} um, {} response points", b.band.lo_um(),
+                                                  b.band.hi_um(), b.band.table().size());
   }
   const auto exr = dir / (file_safe_name(image.sensor) + suffix + ".exr");
   write_exr(exr, image.width, image.height, channels, attributes);
@@ -67,7 +68,10 @@ std::vector<std::filesystem::path> write_sensor_image(const std::filesystem::pat
                               b.band.lo_um(), b.band.hi_um(), q.title, time_s);
       opt.units = q.units;
       opt.colormap = q.map;
-      if (q.map == Colormap::kGray) { opt.min = 0.0; opt.max = 1.0; }
+      if (q.map == Colormap::kGray) {
+        opt.min = 0.0;
+        opt.max = 1.0;
+      }
       const auto path = dir / (stem + "_" + q.file_part + suffix + ".png");
       write_png_preview(path, image.width, image.height, *q.values, opt, text);
       written.push_back(path);

@@ -1,5 +1,7 @@
 #include "obscura/io/screening_output.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -7,8 +9,6 @@
 #include <limits>
 #include <map>
 #include <optional>
-
-#include <fmt/format.h>
 
 #include "obscura/io/line_plot.h"
 #include "obscura/io/png_file.h"
@@ -29,13 +29,16 @@ const std::vector<Column>& numeric_columns() {
       {"band_min_um", "band_min_um", [](const auto& m) { return m.band.lo_um(); }},
       {"band_max_um", "band_max_um", [](const auto& m) { return m.band.hi_um(); }},
       {"target_pixels", "target_pixels", [](const auto& m) { return double(m.target_pixels); }},
-      {"background_pixels", "background_pixels", [](const auto& m) { return double(m.background_pixels); }},
-      {"transmittance_mean", "transmittance_mean", [](const auto& m) { return m.transmittance_mean; }},
+      {"background_pixels", "background_pixels",
+       [](const auto& m) { return double(m.background_pixels); }},
+      {"transmittance_mean", "transmittance_mean",
+       [](const auto& m) { return m.transmittance_mean; }},
       {"transmittance_p10", "transmittance_p10", [](const auto& m) { return m.transmittance_p10; }},
       {"transmittance_p50", "transmittance_p50", [](const auto& m) { return m.transmittance_p50; }},
       {"transmittance_p90", "transmittance_p90", [](const auto& m) { return m.transmittance_p90; }},
       {"screened_fraction", "screened_fraction", [](const auto& m) { return m.screened_fraction; }},
-      {"target_radiance_W_m-2_sr-1", "target_radiance", [](const auto& m) { return m.target_radiance; }},
+      {"target_radiance_W_m-2_sr-1", "target_radiance",
+       [](const auto& m) { return m.target_radiance; }},
       {"background_radiance_W_m-2_sr-1", "background_radiance",
        [](const auto& m) { return m.background_radiance; }},
       {"contrast", "contrast", [](const auto& m) { return m.contrast; }},
@@ -48,7 +51,9 @@ const std::vector<Column>& numeric_columns() {
   return columns;
 }
 
-nlohmann::json number_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(); }
+nlohmann::json number_or_null(double v) {
+  return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json();
+}
 nlohmann::json number_or_null(const std::optional<double>& v) {
   return v ? number_or_null(*v) : nlohmann::json();
 }
@@ -92,12 +97,13 @@ std::string screening_metrics_csv(const std::vector<ScreeningMetrics>& rows) {
 }
 
 nlohmann::json screening_settings_json(const MetricsSettings& settings, double reference_time_s) {
-  return {{"transmittance_threshold", settings.transmittance_threshold},
-          {"screened_fraction", settings.screened_fraction},
-          {"background_margin_px", settings.background_margin_px},
-          {"reference_time_s", reference_time_s},
-          {"percentile_method", "linear interpolation between order statistics (Hyndman & Fan type 7)"},
-          {"thermal_boundary_um", kThermalBoundaryUm}};
+  return {
+      {"transmittance_threshold", settings.transmittance_threshold},
+      {"screened_fraction", settings.screened_fraction},
+      {"background_margin_px", settings.background_margin_px},
+      {"reference_time_s", reference_time_s},
+      {"percentile_method", "linear interpolation between order statistics (Hyndman & Fan type 7)"},
+      {"thermal_boundary_um", kThermalBoundaryUm}};
 }
 
 nlohmann::json screening_series_json(const std::vector<ScreeningSeries>& series) {
@@ -105,18 +111,19 @@ nlohmann::json screening_series_json(const std::vector<ScreeningSeries>& series)
   for (const ScreeningSeries& s : series) {
     nlohmann::json intervals = nlohmann::json::array();
     for (const auto& iv : s.screening.intervals) intervals.push_back({iv.from_s, iv.until_s});
-    out.push_back({{"sensor", s.sensor},
-                   {"band", s.band.name()},
-                   {"target_pixels", s.target_pixels},
-                   {"frames", s.times_s.size()},
-                   {"time_to_screen_s", number_or_null(s.screening.time_to_screen_s)},
-                   {"screened_from_s", number_or_null(s.screening.screened_from_s)},
-                   {"screened_until_s", number_or_null(s.screening.screened_until_s)},
-                   {"screening_duration_s", number_or_null(s.screening.screening_duration_s)},
-                   {"screened_intervals_s", intervals},
-                   {"max_screened_fraction", number_or_null(s.max_screened_fraction)},
-                   {"min_transmittance_mean", number_or_null(s.min_transmittance_mean)},
-                   {"min_transmittance_mean_time_s", number_or_null(s.min_transmittance_mean_time_s)}});
+    out.push_back(
+        {{"sensor", s.sensor},
+         {"band", s.band.name()},
+         {"target_pixels", s.target_pixels},
+         {"frames", s.times_s.size()},
+         {"time_to_screen_s", number_or_null(s.screening.time_to_screen_s)},
+         {"screened_from_s", number_or_null(s.screening.screened_from_s)},
+         {"screened_until_s", number_or_null(s.screening.screened_until_s)},
+         {"screening_duration_s", number_or_null(s.screening.screening_duration_s)},
+         {"screened_intervals_s", intervals},
+         {"max_screened_fraction", number_or_null(s.max_screened_fraction)},
+         {"min_transmittance_mean", number_or_null(s.min_transmittance_mean)},
+         {"min_transmittance_mean_time_s", number_or_null(s.min_transmittance_mean_time_s)}});
   }
   return out;
 }
@@ -129,7 +136,8 @@ nlohmann::json target_masks_json(const std::vector<TargetMask>& masks) {
                    {"height", m.height},
                    {"target_pixels", m.target_pixels},
                    {"background_pixels", m.background_pixels},
-                   {"target_bbox_px", m.empty() ? nlohmann::json() : nlohmann::json{m.x0, m.y0, m.x1, m.y1}}});
+                   {"target_bbox_px",
+                    m.empty() ? nlohmann::json() : nlohmann::json{m.x0, m.y0, m.x1, m.y1}}});
   }
   return out;
 }
@@ -148,8 +156,13 @@ nlohmann::json screening_metrics_json(const nlohmann::json& provenance,
   return {{"provenance", provenance},
           {"settings", screening_settings_json(settings, reference_time_s)},
           {"units",
-           {{"time", "s"}, {"radiance", "W m-2 sr-1"}, {"apparent_temperature", "K"},
-            {"delta_t", "K"}, {"transmittance", "1"}, {"screened_fraction", "1"}, {"contrast", "1"},
+           {{"time", "s"},
+            {"radiance", "W m-2 sr-1"},
+            {"apparent_temperature", "K"},
+            {"delta_t", "K"},
+            {"transmittance", "1"},
+            {"screened_fraction", "1"},
+            {"contrast", "1"},
             {"wavelength", "um"}}},
           {"targets", target_masks_json(masks)},
           {"frames", frames},
@@ -185,16 +198,20 @@ ScreeningPlotFiles write_screening_plots(const std::filesystem::path& dir,
   for (const auto& g : groups) {
     const std::string label = series_label(*g.front());
     const Band& band = g.front()->band;
+    transmittance.series.push_back(make_series(
+        label + " mean", g, &ScreeningMetrics::transmittance_mean, Style::kLineAndMarkers));
     transmittance.series.push_back(
-        make_series(label + " mean", g, &ScreeningMetrics::transmittance_mean, Style::kLineAndMarkers));
-    transmittance.series.push_back(make_series(label + " p10", g, &ScreeningMetrics::transmittance_p10, Style::kLine));
-    transmittance.series.push_back(make_series(label + " p90", g, &ScreeningMetrics::transmittance_p90, Style::kLine));
+        make_series(label + " p10", g, &ScreeningMetrics::transmittance_p10, Style::kLine));
+    transmittance.series.push_back(
+        make_series(label + " p90", g, &ScreeningMetrics::transmittance_p90, Style::kLine));
     screened.series.push_back(
         make_series(label, g, &ScreeningMetrics::screened_fraction, Style::kLineAndMarkers));
     if (is_reflective_band(band))
-      contrast.series.push_back(make_series(label, g, &ScreeningMetrics::contrast, Style::kLineAndMarkers));
+      contrast.series.push_back(
+          make_series(label, g, &ScreeningMetrics::contrast, Style::kLineAndMarkers));
     if (is_thermal_band(band))
-      delta_t.series.push_back(make_series(label, g, &ScreeningMetrics::delta_t_k, Style::kLineAndMarkers));
+      delta_t.series.push_back(
+          make_series(label, g, &ScreeningMetrics::delta_t_k, Style::kLineAndMarkers));
     t_lo = std::min(t_lo, g.front()->time_s);
     t_hi = std::max(t_hi, g.back()->time_s);
   }
@@ -249,7 +266,8 @@ std::string screening_summary_text(const std::vector<ScreeningSeries>& series,
       "at least {:g} % of its pixels are; times to screen from t = {:g} s\n",
       settings.transmittance_threshold, 100.0 * settings.screened_fraction, reference_time_s);
   std::size_t width = 0;
-  for (const ScreeningSeries& s : series) width = std::max(width, (s.sensor + " / " + s.band.name()).size());
+  for (const ScreeningSeries& s : series)
+    width = std::max(width, (s.sensor + " / " + s.band.name()).size());
   for (const ScreeningSeries& s : series) {
     const std::string label = s.sensor + " / " + s.band.name();
     out += fmt::format("  {:<{}}  ", label, width);
@@ -259,9 +277,10 @@ std::string screening_summary_text(const std::vector<ScreeningSeries>& series,
     }
     const ScreeningTimes& st = s.screening;
     if (st.time_to_screen_s) {
-      out += fmt::format("time to screen {:.4g} s, screened {:.4g} s in all (first {:.4g}–{:.4g} s)",
-                         *st.time_to_screen_s, *st.screening_duration_s, *st.screened_from_s,
-                         *st.screened_until_s);
+      out +=
+          fmt::format("time to screen {:.4g} s, screened {:.4g} s in all (first {:.4g}–{:.4g} s)",
+                      *st.time_to_screen_s, *st.screening_duration_s, *st.screened_from_s,
+                      *st.screened_until_s);
     } else {
       out += fmt::format("not screened (max screened fraction {:.3g})", s.max_screened_fraction);
     }

@@ -5,10 +5,9 @@
 // target masks as PNGs, and the text summary the CLI prints. Every file goes
 // through an AtomicFile (temporary name, then rename).
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "obscura/analysis/screening_metrics.h"
 #include "obscura/analysis/target_mask.h"

@@ -11,12 +11,11 @@
 #include <cmath>
 #include <functional>
 #include <mutex>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <set>
 #include <stdexcept>
 #include <system_error>
-
-#include <nlohmann/json.hpp>
 
 #include "obscura/core/error.h"
 #include "obscura/io/atomic_file.h"
@@ -43,12 +42,19 @@ constexpr double kTransformTolerance = 1e-6;
 // File-level metadata keys this format owns (either form); extra_metadata
 // must not use them.
 const std::set<std::string>& reserved_keys() {
-  static const std::set<std::string> keys = {
-      "obscura_format",    "obscura_format_version", "obscura_form",
-      "time_s",            "wavelengths_um",         "spectral_count",
-      "dims",              "coefficient_units",      "temperature_units",
-      "placement",         "species_count",          "species_optics",
-      "concentration_units"};
+  static const std::set<std::string> keys = {"obscura_format",
+                                             "obscura_format_version",
+                                             "obscura_form",
+                                             "time_s",
+                                             "wavelengths_um",
+                                             "spectral_count",
+                                             "dims",
+                                             "coefficient_units",
+                                             "temperature_units",
+                                             "placement",
+                                             "species_count",
+                                             "species_optics",
+                                             "concentration_units"};
   return keys;
 }
 
@@ -65,10 +71,10 @@ void ensure_openvdb_initialized() {
 struct GridSpec {
   std::string name;
   std::string units;
-  bool fog_volume = false;   // grid class: fog volume (densities) or unknown
-  int spectral_index = -1;   // spectral grids: k, with wavelength_um
+  bool fog_volume = false;  // grid class: fog volume (densities) or unknown
+  int spectral_index = -1;  // spectral grids: k, with wavelength_um
   double wavelength_um = 0.0;
-  std::string species;       // concentration grids: the species' name
+  std::string species;  // concentration grids: the species' name
 };
 
 // The grids of the spectral form, in VoxelGrid channel order (σa, σs, g per
@@ -76,9 +82,9 @@ struct GridSpec {
 std::vector<GridSpec> spectral_layout(const std::vector<double>& wavelengths_um) {
   const int n = static_cast<int>(wavelengths_um.size());
   std::vector<GridSpec> layout;
-  for (const auto& [prefix, units, fog] : {std::tuple{"sigma_a_", kCoefficientUnits, true},
-                                           std::tuple{"sigma_s_", kCoefficientUnits, true},
-                                           std::tuple{"g_", "1", false}})
+  for (const auto& [prefix, units, fog] :
+       {std::tuple{"sigma_a_", kCoefficientUnits, true},
+        std::tuple{"sigma_s_", kCoefficientUnits, true}, std::tuple{"g_", "1", false}})
     for (int k = 0; k < n; ++k)
       layout.push_back({fmt::format("{}{:03d}", prefix, k), units, fog, k, wavelengths_um[k], ""});
   layout.push_back({kTransformGrid, kTemperatureUnits, false, -1, 0.0, ""});
@@ -192,10 +198,12 @@ std::string format_wavelengths(const std::vector<double>& w) {
 // 17 significant digits): OpenVDB re-simplifies transforms on read, which moves
 // their last bits, so the exact values travel beside the transform.
 std::string format_placement(const GridPlacement& p) {
-  std::string out = fmt::format("origin_m={:.17g},{:.17g},{:.17g};voxel_size_m={:.17g};rotation=",
-                                p.origin_m.x, p.origin_m.y, p.origin_m.z, p.voxel_size_m);
+  std::string out =
+      fmt::format("origin_m={:.17g},{:.17g},{:.17g};voxel_size_m={:.17g};rotation=", p.origin_m.x,
+                  p.origin_m.y, p.origin_m.z, p.voxel_size_m);
   for (int r = 0; r < 3; ++r)
-    for (int c = 0; c < 3; ++c) out += fmt::format("{}{:.17g}", r + c == 0 ? "" : ",", p.rotation.m[r][c]);
+    for (int c = 0; c < 3; ++c)
+      out += fmt::format("{}{:.17g}", r + c == 0 ? "" : ",", p.rotation.m[r][c]);
   return out;
 }
 
@@ -310,7 +318,8 @@ class MetaReader {
 
 // If a grid carries one of our per-grid metadata fields, it must agree with
 // the file; grids from other tools may omit them.
-void check_grid_metadata(const openvdb::GridBase& g, const GridSpec& spec, const std::string& file) {
+void check_grid_metadata(const openvdb::GridBase& g, const GridSpec& spec,
+                         const std::string& file) {
   const std::string& name = spec.name;
   if (auto u = g.getMetadata<openvdb::StringMetadata>("units")) {
     if (u->value() != spec.units)
@@ -325,9 +334,10 @@ void check_grid_metadata(const openvdb::GridBase& g, const GridSpec& spec, const
         throw InputError(file, name + ".species",
                          fmt::format("grid metadata has type {}, expected string", m->typeName()));
       if (s->value() != spec.species)
-        throw InputError(file, name + ".species",
-                         fmt::format("species '{}' differs from species_optics, which names it '{}'",
-                                     s->value(), spec.species));
+        throw InputError(
+            file, name + ".species",
+            fmt::format("species '{}' differs from species_optics, which names it '{}'", s->value(),
+                        spec.species));
     }
   }
   const int k = spec.spectral_index;
@@ -402,9 +412,9 @@ CommonHeader read_common_header(const MetaReader& meta, const openvdb::MetaMap& 
   // Files without obscura_form (other tools, older obscura) are spectral.
   h.form = map[std::string("obscura_form")] ? meta.get_string("obscura_form") : kFormSpectral;
   if (h.form != kFormSpectral && h.form != kFormSpecies)
-    throw InputError(file, "obscura_form",
-                     fmt::format("is '{}', expected '{}' or '{}'", h.form, kFormSpectral,
-                                 kFormSpecies));
+    throw InputError(
+        file, "obscura_form",
+        fmt::format("is '{}', expected '{}' or '{}'", h.form, kFormSpectral, kFormSpecies));
   if (meta.get_string("temperature_units") != kTemperatureUnits)
     throw InputError(file, "temperature_units",
                      fmt::format("is '{}', expected '{}'", meta.get_string("temperature_units"),
@@ -469,13 +479,15 @@ GridPlacement read_layout_placement(openvdb::io::File& f, const openvdb::MetaMap
       throw InputError(file, layout[c].name,
                        "grid transform differs from the 'temperature' grid's; all grids of a "
                        "keyframe must share one placement");
-  for (std::size_t c = 0; c < headers.size(); ++c) check_grid_metadata(*headers[c], layout[c], file);
+  for (std::size_t c = 0; c < headers.size(); ++c)
+    check_grid_metadata(*headers[c], layout[c], file);
 
   // Prefer the exact placement written beside the transform, when it agrees with it.
   if (auto m = file_metadata.getMetadata<openvdb::StringMetadata>("placement")) {
     const auto parsed = parse_placement(m->value());
     if (!parsed)
-      throw InputError(file, "placement", fmt::format("'{}' is not a placement record", m->value()));
+      throw InputError(file, "placement",
+                       fmt::format("'{}' is not a placement record", m->value()));
     if (!placements_agree(*parsed, placement, dims, 1e-6))
       throw InputError(file, "placement",
                        "disagrees with the grids' transform (the file was edited inconsistently)");
@@ -590,19 +602,19 @@ SpeciesCloud read_species_grids(openvdb::io::File& f, const MetaReader& meta,
 
   // Before reading any voxel data: the expanded grid and, while it is being
   // expanded, the compact arrays must fit in memory.
-  const std::uint64_t expanded = VoxelGrid::checked_storage_bytes(
-      h.dims, static_cast<int>(h.wavelengths_um.size()), file);
+  const std::uint64_t expanded =
+      VoxelGrid::checked_storage_bytes(h.dims, static_cast<int>(h.wavelengths_um.size()), file);
   std::uint64_t compact = 0;
   if (__builtin_mul_overflow(static_cast<std::uint64_t>(h.dims.count()),
                              static_cast<std::uint64_t>((ns + 1) * sizeof(float)), &compact) ||
       expanded + compact < expanded || expanded + compact > available_memory_bytes())
-    throw InputError(file, "dims",
-                     fmt::format("grid {}x{}x{} with {} species and {} wavelengths needs {:.3g} "
-                                 "GiB but only {:.3g} GiB of memory is available",
-                                 h.dims.nx, h.dims.ny, h.dims.nz, ns, h.wavelengths_um.size(),
-                                 (static_cast<double>(expanded) + static_cast<double>(compact)) /
-                                     1073741824.0,
-                                 available_memory_bytes() / 1073741824.0));
+    throw InputError(
+        file, "dims",
+        fmt::format("grid {}x{}x{} with {} species and {} wavelengths needs {:.3g} "
+                    "GiB but only {:.3g} GiB of memory is available",
+                    h.dims.nx, h.dims.ny, h.dims.nz, ns, h.wavelengths_um.size(),
+                    (static_cast<double>(expanded) + static_cast<double>(compact)) / 1073741824.0,
+                    available_memory_bytes() / 1073741824.0));
 
   check_no_extra_indexed_grids(f, {"concentration_"}, static_cast<int>(ns), file, [&](int idx) {
     return fmt::format("grid index {} is beyond species_count {}", idx, ns);
@@ -761,8 +773,8 @@ void write_cloud_keyframe(const std::filesystem::path& path, const VoxelGrid& gr
   check_time_and_metadata(file, time_s, extra_metadata);
   grid.validate(file);  // an invalid grid would only be refused by the reader
 
-  openvdb::MetaMap meta = common_metadata(kFormSpectral, time_s, grid.wavelengths_um(),
-                                          grid.dims(), grid.placement(), extra_metadata);
+  openvdb::MetaMap meta = common_metadata(kFormSpectral, time_s, grid.wavelengths_um(), grid.dims(),
+                                          grid.placement(), extra_metadata);
   meta.insertMeta("coefficient_units", openvdb::StringMetadata(kCoefficientUnits));
   const openvdb::math::Transform::Ptr xf = placement_to_transform(grid.placement());
   const std::vector<GridSpec> layout = spectral_layout(grid.wavelengths_um());
@@ -783,14 +795,14 @@ void write_species_keyframe(const std::filesystem::path& path, const SpeciesClou
   openvdb::MetaMap meta = common_metadata(kFormSpecies, time_s, cloud.wavelengths_um, cloud.dims,
                                           cloud.placement, extra_metadata);
   meta.insertMeta("concentration_units", openvdb::StringMetadata(kConcentrationUnits));
-  meta.insertMeta("species_count",
-                  openvdb::Int32Metadata(static_cast<int>(cloud.species.size())));
+  meta.insertMeta("species_count", openvdb::Int32Metadata(static_cast<int>(cloud.species.size())));
   meta.insertMeta("species_optics", openvdb::StringMetadata(format_species_optics(cloud.species)));
   const openvdb::math::Transform::Ptr xf = placement_to_transform(cloud.placement);
   const std::vector<GridSpec> layout = species_layout(cloud.species);
   openvdb::GridPtrVec grids;
   for (std::size_t s = 0; s < cloud.species.size(); ++s)
-    grids.push_back(make_float_grid(layout[s], cloud.concentration_g_m3[s].data(), cloud.dims, *xf));
+    grids.push_back(
+        make_float_grid(layout[s], cloud.concentration_g_m3[s].data(), cloud.dims, *xf));
   grids.push_back(make_float_grid(layout.back(), cloud.temperature_k.data(), cloud.dims, *xf));
   write_keyframe_file(path, grids, meta);
 }

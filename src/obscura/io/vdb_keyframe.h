@@ -73,7 +73,7 @@ struct SpeciesSummary {
 struct KeyframeInfo {
   std::filesystem::path file;
   std::uintmax_t file_bytes = 0;
-  std::string form = "spectral";  // "spectral" or "species" (obscura_form)
+  std::string form = "spectral";        // "spectral" or "species" (obscura_form)
   std::vector<SpeciesSummary> species;  // species form only, in file order
   GridDims dims;
   std::vector<double> wavelengths_um;

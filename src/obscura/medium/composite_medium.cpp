@@ -1,9 +1,9 @@
 #include "obscura/medium/composite_medium.h"
 
-#include <algorithm>
-
 #include <fmt/format.h>
 #include <fmt/ranges.h>
+
+#include <algorithm>
 
 #include "obscura/core/error.h"
 
@@ -17,11 +17,12 @@ CompositeMedium::CompositeMedium(std::vector<std::shared_ptr<const Medium>> chil
   wavelengths_um_ = children_.front()->wavelengths_um();
   for (std::size_t i = 0; i < children_.size(); ++i) {
     if (children_[i]->wavelengths_um() != wavelengths_um_)
-      throw InputError(source, fmt::format("clouds/{}", i),
-                       fmt::format("spectral samples [{}] µm differ from the first cloud's [{}] µm; "
-                                   "overlapping clouds must share their wavelengths",
-                                   fmt::join(children_[i]->wavelengths_um(), ", "),
-                                   fmt::join(wavelengths_um_, ", ")));
+      throw InputError(
+          source, fmt::format("clouds/{}", i),
+          fmt::format("spectral samples [{}] µm differ from the first cloud's [{}] µm; "
+                      "overlapping clouds must share their wavelengths",
+                      fmt::join(children_[i]->wavelengths_um(), ", "),
+                      fmt::join(wavelengths_um_, ", ")));
     bounds_.expand(children_[i]->bounds());
   }
 }
@@ -45,7 +46,8 @@ void CompositeMedium::coefficients_at(const Vec3& p, MediumPoint& out) const {
     weighted_t += child.sigma_a[0] * child.temperature_k;
     plain_t = std::max(plain_t, child.temperature_k);
   }
-  for (std::size_t k = 0; k < n; ++k) out.g[k] = out.sigma_s[k] > 0 ? out.g[k] / out.sigma_s[k] : 0.0;
+  for (std::size_t k = 0; k < n; ++k)
+    out.g[k] = out.sigma_s[k] > 0 ? out.g[k] / out.sigma_s[k] : 0.0;
   out.temperature_k = weight > 0 ? weighted_t / weight : plain_t;
 }
 

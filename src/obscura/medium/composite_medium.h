@@ -15,7 +15,8 @@ class CompositeMedium final : public Medium {
  public:
   // The children must share the same spectral samples; throws InputError
   // naming `source` otherwise. Null children are ignored.
-  CompositeMedium(std::vector<std::shared_ptr<const Medium>> children, const std::string& source = "");
+  CompositeMedium(std::vector<std::shared_ptr<const Medium>> children,
+                  const std::string& source = "");
 
   BBox3 bounds() const override { return bounds_; }
   const std::vector<double>& wavelengths_um() const override { return wavelengths_um_; }

@@ -21,7 +21,11 @@ struct Cubic {
     return *this;
   }
   Cubic operator*(double k) const { return {{c[0] * k, c[1] * k, c[2] * k, c[3] * k}}; }
-  Cubic operator+(const Cubic& o) const { Cubic r = *this; r += o; return r; }
+  Cubic operator+(const Cubic& o) const {
+    Cubic r = *this;
+    r += o;
+    return r;
+  }
   static Cubic constant(double v) { return {{v, 0, 0, 0}}; }
   // The same polynomial in a variable shifted by d: q(s) = p(s + d).
   Cubic shifted(double d) const {

@@ -1,9 +1,9 @@
 #include "obscura/medium/gaussian_puff.h"
 
+#include <fmt/format.h>
+
 #include <cmath>
 #include <numbers>
-
-#include <fmt/format.h>
 
 #include "obscura/core/error.h"
 
@@ -23,7 +23,8 @@ void GaussianPuffSpec::validate() const {
       throw InputError(src, "peak_sigma_s", "must be finite and >= 0 (1/m)");
     if (!(g[k] > -1 && g[k] < 1)) throw InputError(src, "g", "must lie in (-1, 1)");
   }
-  if (!(radius_m > 0 && std::isfinite(radius_m))) throw InputError(src, "radius_m", "must be > 0 m");
+  if (!(radius_m > 0 && std::isfinite(radius_m)))
+    throw InputError(src, "radius_m", "must be > 0 m");
   if (!(extent_radii > 0)) throw InputError(src, "extent_radii", "must be > 0");
   if (resolution < 1) throw InputError(src, "resolution", "must be >= 1");
   if (!(ambient_temperature_k >= 0) || !(ambient_temperature_k + temperature_excess_k >= 0))

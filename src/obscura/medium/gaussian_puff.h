@@ -13,9 +13,9 @@ namespace obscura {
 
 struct GaussianPuffSpec {
   Vec3 center_m{0, 0, 0};
-  double radius_m = 1.0;         // the Gaussian's standard deviation s
-  double extent_radii = 4.0;     // the grid spans ±extent_radii·s around the centre
-  int resolution = 64;           // voxels along each axis
+  double radius_m = 1.0;      // the Gaussian's standard deviation s
+  double extent_radii = 4.0;  // the grid spans ±extent_radii·s around the centre
+  int resolution = 64;        // voxels along each axis
   std::vector<double> wavelengths_um{10.0};
   std::vector<double> peak_sigma_a{1.0};  // 1/m at the centre, per sample
   std::vector<double> peak_sigma_s{0.0};  // 1/m at the centre, per sample

@@ -28,7 +28,8 @@ inline AxisLerp axis_lerp(double u, int n) {
 // The ray in "cell space" w = index + 1, where reconstruction cell c' spans
 // [c', c'+1] and the grid occupies [½, n + ½]; t stays the world distance in
 // metres. Clips [t_min, t_max] to the grid; false if the ray misses it.
-bool to_cell_space(const VoxelGrid& g, const Ray& ray, double& t_min, double& t_max, Ray& cell_ray) {
+bool to_cell_space(const VoxelGrid& g, const Ray& ray, double& t_min, double& t_max,
+                   Ray& cell_ray) {
   const GridDims& d = g.dims();
   cell_ray = Ray{g.placement().world_to_index(ray.origin) + Vec3(1, 1, 1),
                  g.placement().world_to_index_direction(ray.direction)};
@@ -145,9 +146,27 @@ void GridMedium::trace_segments(const Ray& ray, double t_min, double t_max,
       // hence a cubic; the field is the corner values' combination of them.
       for (int corner = 0; corner < 8; ++corner) {
         double a1, b1, a2, b2, a3, b3;
-        if (corner & 1) { a1 = alpha[0]; b1 = beta[0]; } else { a1 = 1 - alpha[0]; b1 = -beta[0]; }
-        if (corner & 2) { a2 = alpha[1]; b2 = beta[1]; } else { a2 = 1 - alpha[1]; b2 = -beta[1]; }
-        if (corner & 4) { a3 = alpha[2]; b3 = beta[2]; } else { a3 = 1 - alpha[2]; b3 = -beta[2]; }
+        if (corner & 1) {
+          a1 = alpha[0];
+          b1 = beta[0];
+        } else {
+          a1 = 1 - alpha[0];
+          b1 = -beta[0];
+        }
+        if (corner & 2) {
+          a2 = alpha[1];
+          b2 = beta[1];
+        } else {
+          a2 = 1 - alpha[1];
+          b2 = -beta[1];
+        }
+        if (corner & 4) {
+          a3 = alpha[2];
+          b3 = beta[2];
+        } else {
+          a3 = 1 - alpha[2];
+          b3 = -beta[2];
+        }
         basis[corner].c[0] = a1 * a2 * a3;
         basis[corner].c[1] = b1 * a2 * a3 + a1 * b2 * a3 + a1 * a2 * b3;
         basis[corner].c[2] = b1 * b2 * a3 + b1 * a2 * b3 + a1 * b2 * b3;

@@ -1,8 +1,8 @@
 #include "obscura/medium/homogeneous_medium.h"
 
-#include <cmath>
-
 #include <fmt/format.h>
+
+#include <cmath>
 
 #include "obscura/core/error.h"
 

@@ -28,7 +28,7 @@ class HomogeneousMedium final : public Medium {
   BBox3 box_;
   std::vector<double> wavelengths_um_;
   MediumPoint values_;
-  std::vector<Cubic> cubics_;  // σa then σs, constant
+  std::vector<Cubic> cubics_;    // σa then σs, constant
   std::vector<double> sigma_t_;  // σa + σs per sample, the exact majorant
 };
 

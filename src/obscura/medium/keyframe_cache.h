@@ -30,7 +30,8 @@ class KeyframeCache {
  private:
   std::size_t capacity_;
   Loader loader_;
-  std::list<std::pair<std::filesystem::path, std::shared_ptr<const VoxelGrid>>> entries_;  // MRU first
+  std::list<std::pair<std::filesystem::path, std::shared_ptr<const VoxelGrid>>>
+      entries_;  // MRU first
   std::size_t loads_ = 0, hits_ = 0;
 };
 

@@ -1,9 +1,9 @@
 #include "obscura/medium/keyframe_interpolation.h"
 
+#include <fmt/format.h>
+
 #include <cmath>
 #include <memory>
-
-#include <fmt/format.h>
 
 #include "obscura/core/error.h"
 #include "obscura/core/parallel.h"
@@ -49,9 +49,12 @@ VoxelGrid interpolate_same_layout(const VoxelGrid& a, const VoxelGrid& b, double
     float* ot = out.temperature();
     for (std::size_t v = begin; v < end; ++v) {
       const bool ea = empty_voxel(a, v), eb = empty_voxel(b, v);
-      if (ea && !eb) ot[v] = bt[v];
-      else if (eb && !ea) ot[v] = at[v];
-      else ot[v] = static_cast<float>(u * at[v] + w * bt[v]);
+      if (ea && !eb)
+        ot[v] = bt[v];
+      else if (eb && !ea)
+        ot[v] = at[v];
+      else
+        ot[v] = static_cast<float>(u * at[v] + w * bt[v]);
     }
   });
   return out;

@@ -1,9 +1,9 @@
 #include "obscura/medium/lifecycle.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
-
-#include <fmt/format.h>
 
 #include "obscura/core/error.h"
 
@@ -25,11 +25,16 @@ double snap_tolerance(double u, double s) {
 
 std::string to_string(CloudPhase phase) {
   switch (phase) {
-    case CloudPhase::kAbsent: return "absent";
-    case CloudPhase::kInitialisation: return "initialisation";
-    case CloudPhase::kEvolution: return "evolution";
-    case CloudPhase::kExtinction: return "extinction";
-    case CloudPhase::kExtinct: return "extinct";
+    case CloudPhase::kAbsent:
+      return "absent";
+    case CloudPhase::kInitialisation:
+      return "initialisation";
+    case CloudPhase::kEvolution:
+      return "evolution";
+    case CloudPhase::kExtinction:
+      return "extinction";
+    case CloudPhase::kExtinct:
+      return "extinct";
   }
   return "unknown";
 }
@@ -47,7 +52,8 @@ Lifecycle::Lifecycle(std::vector<double> keyframe_times_s, LifecycleSpec spec,
   for (int k = 0; k < n; ++k) {
     const std::string field = fmt::format("keyframes/{}/time", k);
     if (!std::isfinite(times_[k]) || times_[k] < 0)
-      throw InputError(source, field, fmt::format("must be a finite time >= 0 s, found {}", times_[k]));
+      throw InputError(source, field,
+                       fmt::format("must be a finite time >= 0 s, found {}", times_[k]));
     if (k > 0 && !(times_[k] > times_[k - 1]))
       throw InputError(source, field,
                        fmt::format("keyframe times must increase strictly: {} s follows {} s",
@@ -55,21 +61,21 @@ Lifecycle::Lifecycle(std::vector<double> keyframe_times_s, LifecycleSpec spec,
   }
   const auto index_in_range = [&](int value, const char* name) {
     if (value < 0 || value > n - 1)
-      throw InputError(source, std::string("lifecycle/") + name,
-                       fmt::format("keyframe index {} out of range [0, {}] ({} keyframes)", value,
-                                   n - 1, n));
+      throw InputError(
+          source, std::string("lifecycle/") + name,
+          fmt::format("keyframe index {} out of range [0, {}] ({} keyframes)", value, n - 1, n));
   };
   index_in_range(spec_.init_end, "init_end");
   index_in_range(spec_.loop_start, "loop_start");
   index_in_range(spec_.loop_end, "loop_end");
   if (spec_.loop_start < spec_.init_end)
-    throw InputError(source, "lifecycle/loop_start",
-                     fmt::format("must be >= init_end ({}), found {}", spec_.init_end,
-                                 spec_.loop_start));
+    throw InputError(
+        source, "lifecycle/loop_start",
+        fmt::format("must be >= init_end ({}), found {}", spec_.init_end, spec_.loop_start));
   if (spec_.loop_end < spec_.loop_start)
-    throw InputError(source, "lifecycle/loop_end",
-                     fmt::format("must be >= loop_start ({}), found {}", spec_.loop_start,
-                                 spec_.loop_end));
+    throw InputError(
+        source, "lifecycle/loop_end",
+        fmt::format("must be >= loop_start ({}), found {}", spec_.loop_start, spec_.loop_end));
   if (spec_.extinction_start <= spec_.loop_end || spec_.extinction_start > n - 1)
     throw InputError(source, "lifecycle/extinction_start",
                      fmt::format("must lie in [loop_end + 1, n − 1] = [{}, {}] (extinction needs "

@@ -7,7 +7,8 @@ void Medium::add_optical_depth(const Ray& ray, double t_min, double t_max, doubl
     const double h = seg.t_end - seg.t_begin;
     for (int c = 0; c < seg.component_count; ++c)
       for (int k = 0; k < seg.spectral_count; ++k)
-        tau[k] += seg.components[c].sigma_a[k].integral(h) + seg.components[c].sigma_s[k].integral(h);
+        tau[k] +=
+            seg.components[c].sigma_a[k].integral(h) + seg.components[c].sigma_s[k].integral(h);
     return true;
   });
 }

@@ -22,7 +22,9 @@ SpectralLerp SpectralLerp::at(const std::vector<double>& w, double wavelength_um
 namespace {
 
 // Exponential step with rate `sigma` (1/m); 1 − u lies in (0, 1], so the log is finite.
-inline double exponential_step(Rng& rng, double sigma) { return -std::log(1.0 - rng.uniform()) / sigma; }
+inline double exponential_step(Rng& rng, double sigma) {
+  return -std::log(1.0 - rng.uniform()) / sigma;
+}
 
 // The walk both estimators share: tentative collisions at rate σ̄ through each
 // majorant piece (restarted at piece boundaries), with the true σt evaluated
@@ -48,11 +50,13 @@ void walk_tentative_collisions(const Medium& medium, const Ray& ray, double t_ma
 }  // namespace
 
 std::optional<double> sample_free_flight(const Medium& medium, const Ray& ray, double t_max,
-                                         const SpectralLerp& lambda, Rng& rng, MediumPoint& scratch) {
+                                         const SpectralLerp& lambda, Rng& rng,
+                                         MediumPoint& scratch) {
   std::optional<double> hit;
   walk_tentative_collisions(medium, ray, t_max, lambda, rng, scratch,
                             [&](double t, double sigma_t, double majorant) {
-                              if (rng.uniform() * majorant >= sigma_t) return true;  // null collision
+                              if (rng.uniform() * majorant >= sigma_t)
+                                return true;  // null collision
                               hit = t;
                               return false;
                             });
@@ -72,8 +76,10 @@ double estimate_transmittance(const Medium& medium, const Ray& ray, double t_max
                             [&](double, double sigma_t, double majorant) {
                               transmittance *= std::max(0.0, 1.0 - sigma_t / majorant);
                               if (transmittance > 0.0 && transmittance < kRouletteBelow) {
-                                if (rng.uniform() >= 0.5) transmittance = 0.0;
-                                else transmittance *= 2.0;
+                                if (rng.uniform() >= 0.5)
+                                  transmittance = 0.0;
+                                else
+                                  transmittance *= 2.0;
                               }
                               return transmittance != 0.0;
                             });

@@ -34,7 +34,8 @@ struct SpectralLerp {
 // `scratch` avoids allocations in the inner loop; after a collision it holds
 // the medium's coefficients at the collision point.
 std::optional<double> sample_free_flight(const Medium& medium, const Ray& ray, double t_max,
-                                         const SpectralLerp& lambda, Rng& rng, MediumPoint& scratch);
+                                         const SpectralLerp& lambda, Rng& rng,
+                                         MediumPoint& scratch);
 
 // Unbiased estimate of the transmittance e^{−τ(0, t_max)} by ratio tracking,
 // with Russian roulette once the estimate falls below 0.05.

@@ -1,9 +1,9 @@
 #include "obscura/medium/trajectory.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
-
-#include <fmt/format.h>
 
 #include "obscura/core/error.h"
 
@@ -30,9 +30,12 @@ Trajectory::Trajectory(std::vector<TrajectoryKey> keys, TrajectoryInterpolation 
                        Vec3 drift_velocity_m_s, const std::string& source)
     : keys_(std::move(keys)), interpolation_(interpolation), drift_m_s_(drift_velocity_m_s) {
   for (std::size_t i = 0; i < keys_.size(); ++i) {
-    const auto field = [&](const char* name) { return fmt::format("trajectory/keys/{}/{}", i, name); };
+    const auto field = [&](const char* name) {
+      return fmt::format("trajectory/keys/{}/{}", i, name);
+    };
     const TrajectoryKey& k = keys_[i];
-    if (!std::isfinite(k.time_s)) throw InputError(source, field("time"), "must be a finite time, s");
+    if (!std::isfinite(k.time_s))
+      throw InputError(source, field("time"), "must be a finite time, s");
     if (i > 0 && !(k.time_s > keys_[i - 1].time_s))
       throw InputError(source, field("time"),
                        fmt::format("key times must increase strictly: {} s follows {} s", k.time_s,
@@ -68,7 +71,8 @@ TrajectoryPose Trajectory::at(double u) const {
       // ends), so the path passes through every key and is C1.
       const auto tangent = [&](std::size_t i) {
         const std::size_t lo = i == 0 ? 0 : i - 1, hi = std::min(i + 1, n - 1);
-        return (pose_of(keys_[hi]) - pose_of(keys_[lo])) * (1.0 / (keys_[hi].time_s - keys_[lo].time_s));
+        return (pose_of(keys_[hi]) - pose_of(keys_[lo])) *
+               (1.0 / (keys_[hi].time_s - keys_[lo].time_s));
       };
       const Pose4 m0 = tangent(k), m1 = tangent(k + 1);
       const double s2 = s * s, s3 = s2 * s;

@@ -12,8 +12,8 @@
 namespace obscura {
 
 struct TrajectoryKey {
-  double time_s = 0;     // local time: seconds after the cloud's activation
-  Vec3 position_m;       // world position of the manifest's origin, m
+  double time_s = 0;       // local time: seconds after the cloud's activation
+  Vec3 position_m;         // world position of the manifest's origin, m
   double heading_deg = 0;  // rotation about +z, counter-clockwise seen from above (x towards y)
 };
 

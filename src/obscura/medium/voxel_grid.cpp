@@ -1,12 +1,11 @@
 #include "obscura/medium/voxel_grid.h"
 
+#include <fmt/format.h>
 #include <unistd.h>
 
 #include <cmath>
 #include <fstream>
 #include <limits>
-
-#include <fmt/format.h>
 
 #include "obscura/core/error.h"
 
@@ -30,13 +29,15 @@ std::uint64_t available_memory_bytes() {
 std::size_t VoxelGrid::checked_storage_bytes(GridDims dims, int spectral_count,
                                              const std::string& source) {
   if (dims.nx <= 0 || dims.ny <= 0 || dims.nz <= 0)
-    throw InputError(source, "dims",
-                     fmt::format("grid dimensions {}x{}x{} must all be > 0", dims.nx, dims.ny, dims.nz));
+    throw InputError(
+        source, "dims",
+        fmt::format("grid dimensions {}x{}x{} must all be > 0", dims.nx, dims.ny, dims.nz));
   if (spectral_count <= 0)
     throw InputError(source, "wavelengths_um", "a grid needs at least one spectral sample");
   std::uint64_t bytes = 0;
   const std::uint64_t channels = 3ull * static_cast<std::uint64_t>(spectral_count) + 1ull;
-  if (__builtin_mul_overflow(static_cast<std::uint64_t>(dims.nx), static_cast<std::uint64_t>(dims.ny), &bytes) ||
+  if (__builtin_mul_overflow(static_cast<std::uint64_t>(dims.nx),
+                             static_cast<std::uint64_t>(dims.ny), &bytes) ||
       __builtin_mul_overflow(bytes, static_cast<std::uint64_t>(dims.nz), &bytes) ||
       __builtin_mul_overflow(bytes, channels, &bytes) ||
       __builtin_mul_overflow(bytes, static_cast<std::uint64_t>(sizeof(float)), &bytes))
@@ -45,11 +46,12 @@ std::size_t VoxelGrid::checked_storage_bytes(GridDims dims, int spectral_count,
                                  dims.ny, dims.nz, channels));
   const std::uint64_t available = available_memory_bytes();
   if (bytes > available)
-    throw InputError(source, "dims",
-                     fmt::format("grid {}x{}x{} with {} channels needs {:.3g} GiB but only {:.3g} GiB "
-                                 "of memory is available",
-                                 dims.nx, dims.ny, dims.nz, channels, bytes / 1073741824.0,
-                                 available / 1073741824.0));
+    throw InputError(
+        source, "dims",
+        fmt::format("grid {}x{}x{} with {} channels needs {:.3g} GiB but only {:.3g} GiB "
+                    "of memory is available",
+                    dims.nx, dims.ny, dims.nz, channels, bytes / 1073741824.0,
+                    available / 1073741824.0));
   return static_cast<std::size_t>(bytes);
 }
 
@@ -68,8 +70,7 @@ VoxelGrid::VoxelGrid(GridDims dims, GridPlacement placement, std::vector<double>
   if (!(std::isfinite(placement.voxel_size_m) && placement.voxel_size_m > 0.0))
     throw InputError(source, "voxel_size_m",
                      fmt::format("voxel size {} must be finite and > 0 m", placement.voxel_size_m));
-  if (!is_finite(placement.origin_m))
-    throw InputError(source, "origin_m", "origin must be finite");
+  if (!is_finite(placement.origin_m)) throw InputError(source, "origin_m", "origin must be finite");
   data_.assign(bytes / sizeof(float), 0.0f);
 }
 
@@ -91,9 +92,12 @@ void VoxelGrid::validate(const std::string& source) const {
         for (int i = 0; i < dims_.nx; ++i) {
           const float x = v[index(i, j, k)];
           const char* problem = nullptr;
-          if (!std::isfinite(x)) problem = "is not finite";
-          else if (is_g && !(x > -1.0f && x < 1.0f)) problem = "is outside (-1, 1)";
-          else if (!is_g && x < 0.0f) problem = "is negative";
+          if (!std::isfinite(x))
+            problem = "is not finite";
+          else if (is_g && !(x > -1.0f && x < 1.0f))
+            problem = "is outside (-1, 1)";
+          else if (!is_g && x < 0.0f)
+            problem = "is negative";
           if (problem)
             throw InputError(source, fmt::format("{} voxel ({},{},{})", channel_name(c), i, j, k),
                              fmt::format("value {} {}", x, problem));

@@ -17,7 +17,8 @@ namespace obscura {
 struct GridDims {
   int nx = 0, ny = 0, nz = 0;
   std::size_t count() const {
-    return static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny) * static_cast<std::size_t>(nz);
+    return static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny) *
+           static_cast<std::size_t>(nz);
   }
   bool operator==(const GridDims&) const = default;
 };

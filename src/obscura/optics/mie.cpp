@@ -1,11 +1,11 @@
 #include "obscura/optics/mie.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
-
-#include <fmt/format.h>
 
 #include "obscura/core/error.h"
 

@@ -1,12 +1,12 @@
 #include "obscura/optics/size_distribution.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <numbers>
 #include <string>
-
-#include <fmt/format.h>
 
 #include "obscura/core/error.h"
 #include "obscura/core/parallel.h"

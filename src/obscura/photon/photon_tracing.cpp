@@ -58,7 +58,9 @@ class EmissionLattice {
   Vec3 sample(Rng& rng, double* pdf) const {
     const double u = rng.uniform() * cdf_.back();
     const std::size_t c =
-        std::min<std::size_t>(std::upper_bound(cdf_.begin(), cdf_.end(), u) - cdf_.begin(), cdf_.size() - 1) - 1;
+        std::min<std::size_t>(std::upper_bound(cdf_.begin(), cdf_.end(), u) - cdf_.begin(),
+                              cdf_.size() - 1) -
+        1;
     *pdf = (cdf_[c + 1] - cdf_[c]) / cdf_.back() / (cell_.x * cell_.y * cell_.z);
     const Vec3 corner = center(c) - cell_ * 0.5;
     return corner + Vec3(rng.uniform() * cell_.x, rng.uniform() * cell_.y, rng.uniform() * cell_.z);
@@ -87,7 +89,7 @@ enum Source { kSun = 0, kEnvironment = 1, kEmission = 2 };
 
 struct Launch {
   Ray ray;
-  double power = 0;  // W µm⁻¹
+  double power = 0;        // W µm⁻¹
   bool scattered = false;  // counts as scattered already (emission photons)
 };
 
@@ -117,7 +119,8 @@ TracedPhotons trace_photons(const Scene& scene, const SpectralNode& node, std::u
     SurfaceHit hit;
     const Ray back{p, -d};
     double radiance = 0;
-    if (intersect_surfaces(scene.surfaces, back, 0.0, std::numeric_limits<double>::infinity(), hit)) {
+    if (intersect_surfaces(scene.surfaces, back, 0.0, std::numeric_limits<double>::infinity(),
+                           hit)) {
       const Vec3 s = back.at(hit.t);
       radiance = surface_radiance(scene, hit, s, node, rng, scratch);
       l.ray = Ray{s + hit.normal * 1e-9, d};
@@ -184,7 +187,8 @@ TracedPhotons trace_photons(const Scene& scene, const SpectralNode& node, std::u
         double pdf = 0;
         const Vec3 x = lattice.sample(rng, &pdf);
         medium.coefficients_at(x, scratch);
-        const double f = kFourPi * lambda(scratch.sigma_a.data()) * node.planck(scratch.temperature_k);
+        const double f =
+            kFourPi * lambda(scratch.sigma_a.data()) * node.planck(scratch.temperature_k);
         l.power = f / (pdf * n_em);
         l.ray = Ray{x, sample_uniform_sphere(rng.uniform(), rng.uniform())};
         l.scattered = true;
@@ -199,26 +203,31 @@ TracedPhotons trace_photons(const Scene& scene, const SpectralNode& node, std::u
         SurfaceHit hit;
         const bool on_surface = intersect_surfaces(scene.surfaces, ray, 1e-9,
                                                    std::numeric_limits<double>::infinity(), hit);
-        const auto t = sample_free_flight(medium, ray, on_surface ? hit.t : std::numeric_limits<double>::infinity(),
-                                          lambda, rng, scratch);
+        const auto t = sample_free_flight(
+            medium, ray, on_surface ? hit.t : std::numeric_limits<double>::infinity(), lambda, rng,
+            scratch);
         if (t) {
-          const double sigma_a = lambda(scratch.sigma_a.data()), sigma_s = lambda(scratch.sigma_s.data());
+          const double sigma_a = lambda(scratch.sigma_a.data()),
+                       sigma_s = lambda(scratch.sigma_s.data());
           if (rng.uniform() * (sigma_a + sigma_s) >= sigma_s) break;  // absorbed
           const Vec3 x = ray.at(*t);
           if (scattered || settings.store_first_scatter)
-            stored[c].push_back(Photon{{static_cast<float>(x.x), static_cast<float>(x.y), static_cast<float>(x.z)},
-                                       {static_cast<float>(ray.direction.x), static_cast<float>(ray.direction.y),
-                                        static_cast<float>(ray.direction.z)},
-                                       static_cast<float>(l.power)});
+            stored[c].push_back(
+                Photon{{static_cast<float>(x.x), static_cast<float>(x.y), static_cast<float>(x.z)},
+                       {static_cast<float>(ray.direction.x), static_cast<float>(ray.direction.y),
+                        static_cast<float>(ray.direction.z)},
+                       static_cast<float>(l.power)});
           scattered = true;
           const HenyeyGreenstein phase(std::clamp(lambda(scratch.g.data()), -0.999999, 0.999999));
           ray = Ray{x, phase.sample(ray.direction, rng.uniform(), rng.uniform(), nullptr)};
         } else if (on_surface) {
           if (!scattered) break;  // its reflection is in the surface's own radiance
-          const double reflectance = scene.surfaces[hit.surface]->material().reflectance_at(node.wavelength_um);
+          const double reflectance =
+              scene.surfaces[hit.surface]->material().reflectance_at(node.wavelength_um);
           if (rng.uniform() >= reflectance) break;
-          ray = Ray{ray.at(hit.t) + hit.normal * 1e-9,
-                    local_to_world(hit.normal, sample_cosine_hemisphere(rng.uniform(), rng.uniform()))};
+          ray = Ray{
+              ray.at(hit.t) + hit.normal * 1e-9,
+              local_to_world(hit.normal, sample_cosine_hemisphere(rng.uniform(), rng.uniform()))};
         } else {
           break;  // escaped
         }

@@ -56,9 +56,9 @@ struct PhotonSourcePowers {
 };
 
 struct TracedPhotons {
-  std::vector<Photon> photons;     // stored at scattering events
-  PhotonSourcePowers launched;     // Σ of the launched photons' powers per source
-  PhotonSourcePowers estimated;    // the powers used to share the photons out
+  std::vector<Photon> photons;              // stored at scattering events
+  PhotonSourcePowers launched;              // Σ of the launched photons' powers per source
+  PhotonSourcePowers estimated;             // the powers used to share the photons out
   long long launched_count[3] = {0, 0, 0};  // sun, environment, emission
 };
 

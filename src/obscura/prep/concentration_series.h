@@ -43,7 +43,7 @@ struct ConcentrationFrame {
 };
 
 struct ConcentrationSeries {
-  std::string source;  // file or model the series came from, for messages
+  std::string source;                      // file or model the series came from, for messages
   std::vector<ConcentrationFrame> frames;  // strictly increasing time_s
 };
 

@@ -1,11 +1,11 @@
 #include "obscura/prep/prepare.h"
 
+#include <fmt/format.h>
+#include <unistd.h>
+
 #include <chrono>
 #include <cmath>
 #include <fstream>
-#include <unistd.h>
-
-#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "obscura/core/error.h"
@@ -24,7 +24,9 @@ namespace obscura {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+double since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
 
 // "times_s": [t0, t1, ...] or {"start": a, "end": b, "step": h} (both ends included).
 std::vector<double> parse_times(JsonObject& root) {
@@ -42,7 +44,8 @@ std::vector<double> parse_times(JsonObject& root) {
     for (long long i = 0; i < n; ++i) times.push_back(start + i * step);
     t.finish();
   }
-  if (times.size() < 2) throw root.error(key, "needs at least two times (a lifecycle needs two keyframes)");
+  if (times.size() < 2)
+    throw root.error(key, "needs at least two times (a lifecycle needs two keyframes)");
   for (std::size_t i = 0; i < times.size(); ++i)
     if (!(times[i] >= 0) || (i > 0 && !(times[i] > times[i - 1])))
       throw InputError(root.file(), fmt::format("{}/{}", root.path_of(key), i),
@@ -61,9 +64,10 @@ SpeciesOptics species_optics(const Material& material, const std::vector<double>
   const std::vector<MaterialOptics> o = optics_at(material, wavelengths_um, humidity, threads);
   for (const MaterialOptics& m : o) {
     if (std::isnan(m.mass_scattering_m2_g) || std::isnan(m.asymmetry)) {
-      warnings.push_back(fmt::format("{} at {} um: the sources give extinction only ({} m2/g); it is "
-                                     "taken as absorption (albedo 0, g 0)",
-                                     material.name, m.wavelength_um, m.mass_extinction_m2_g));
+      warnings.push_back(
+          fmt::format("{} at {} um: the sources give extinction only ({} m2/g); it is "
+                      "taken as absorption (albedo 0, g 0)",
+                      material.name, m.wavelength_um, m.mass_extinction_m2_g));
       s.mass_absorption_m2_g.push_back(m.mass_extinction_m2_g);
       s.mass_scattering_m2_g.push_back(0.0);
       s.asymmetry.push_back(0.0);
@@ -79,7 +83,8 @@ SpeciesOptics species_optics(const Material& material, const std::vector<double>
 void write_manifest(const std::filesystem::path& path, const PrepareReport& r) {
   nlohmann::json doc;
   for (std::size_t i = 0; i < r.keyframes.size(); ++i)
-    doc["keyframes"].push_back({{"file", r.keyframes[i].filename().string()}, {"time", r.times_s[i]}});
+    doc["keyframes"].push_back(
+        {{"file", r.keyframes[i].filename().string()}, {"time", r.times_s[i]}});
   doc["lifecycle"] = {{"init_end", r.lifecycle.init_end},
                       {"loop_start", r.lifecycle.loop_start},
                       {"loop_end", r.lifecycle.loop_end},
@@ -96,8 +101,8 @@ void write_manifest(const std::filesystem::path& path, const PrepareReport& r) {
 
 }  // namespace
 
-PrepareReport prepare_cloud(const std::filesystem::path& config_path, const std::filesystem::path& out_dir,
-                            const PrepareOptions& options) {
+PrepareReport prepare_cloud(const std::filesystem::path& config_path,
+                            const std::filesystem::path& out_dir, const PrepareOptions& options) {
   namespace fs = std::filesystem;
   const std::string file = config_path.string();
   const nlohmann::json doc = read_json_file(config_path);
@@ -108,7 +113,8 @@ PrepareReport prepare_cloud(const std::filesystem::path& config_path, const std:
   };
 
   if (fs::exists(out_dir) && !(fs::is_directory(out_dir) && fs::is_empty(out_dir)))
-    throw InputError(out_dir.string(), "", "exists and is not an empty folder; remove it or choose another");
+    throw InputError(out_dir.string(), "",
+                     "exists and is not an empty folder; remove it or choose another");
 
   // --- What the cloud is made of.
   root.string_or("description", "");
@@ -123,10 +129,13 @@ PrepareReport prepare_cloud(const std::filesystem::path& config_path, const std:
   const double humidity = root.number_or("relative_humidity", 0.0);
   if (!(humidity >= 0 && humidity < 1)) throw root.error("relative_humidity", "must lie in [0, 1)");
   report.wavelengths_um = root.numbers("wavelengths_um");
-  if (report.wavelengths_um.empty()) throw root.error("wavelengths_um", "needs at least one wavelength");
+  if (report.wavelengths_um.empty())
+    throw root.error("wavelengths_um", "needs at least one wavelength");
   for (std::size_t i = 0; i < report.wavelengths_um.size(); ++i)
-    if (!(report.wavelengths_um[i] > 0) || (i > 0 && !(report.wavelengths_um[i] > report.wavelengths_um[i - 1])))
-      throw InputError(file, fmt::format("/wavelengths_um/{}", i), "must be > 0 µm and strictly increasing");
+    if (!(report.wavelengths_um[i] > 0) ||
+        (i > 0 && !(report.wavelengths_um[i] > report.wavelengths_um[i - 1])))
+      throw InputError(file, fmt::format("/wavelengths_um/{}", i),
+                       "must be > 0 µm and strictly increasing");
 
   // --- Which keyframe form to write (docs/formats.md): both read to the same grids.
   const std::string output_form = root.string_or("output_form", "spectral");
@@ -153,8 +162,8 @@ PrepareReport prepare_cloud(const std::filesystem::path& config_path, const std:
       report.released_mass_g += d.released_mass_g();
     }
     burn_end_s = end;
-    say(fmt::format("dispersion: {} devices, {} frames from {} to {} s at {} m voxels", config.devices.size(),
-                    times.size(), times.front(), times.back(), voxel));
+    say(fmt::format("dispersion: {} devices, {} frames from {} to {} s at {} m voxels",
+                    config.devices.size(), times.size(), times.front(), times.back(), voxel));
     series = dispersion_series(config, times, voxel, options.threads);
   } else if (source == "vtk") {
     JsonObject vtk = root.object("vtk");
@@ -190,10 +199,12 @@ PrepareReport prepare_cloud(const std::filesystem::path& config_path, const std:
     say("NetCDF: " + p.string());
     series = read_netcdf_cf(p, o);
   } else {
-    throw root.error("source", fmt::format("unknown source '{}' (expected dispersion, vtk or netcdf)", source));
+    throw root.error(
+        "source", fmt::format("unknown source '{}' (expected dispersion, vtk or netcdf)", source));
   }
   if (series.frames.size() < 2)
-    throw InputError(file, "/source", "needs at least two frames (a lifecycle needs two keyframes)");
+    throw InputError(file, "/source",
+                     "needs at least two frames (a lifecycle needs two keyframes)");
   report.seconds_concentrations = since(t0);
   for (const auto& f : series.frames) report.times_s.push_back(f.time_s);
   report.dims = series.frames[0].concentration_g_m3.dims;
@@ -216,12 +227,13 @@ PrepareReport prepare_cloud(const std::filesystem::path& config_path, const std:
 
   // --- Optics and keyframes, into a temporary sibling folder.
   const auto t1 = Clock::now();
-  const SpeciesOptics optics = species_optics(material, report.wavelengths_um, humidity, options.threads,
-                                              report.warnings);
+  const SpeciesOptics optics =
+      species_optics(material, report.wavelengths_um, humidity, options.threads, report.warnings);
   report.seconds_optics = since(t1);
   const fs::path parent = out_dir.parent_path().empty() ? fs::path(".") : out_dir.parent_path();
   fs::create_directories(parent);
-  const fs::path temp = parent / fmt::format(".{}.partial-{}", out_dir.filename().string(), ::getpid());
+  const fs::path temp =
+      parent / fmt::format(".{}.partial-{}", out_dir.filename().string(), ::getpid());
   fs::remove_all(temp);
   fs::create_directories(temp);
   try {
@@ -244,7 +256,8 @@ PrepareReport prepare_cloud(const std::filesystem::path& config_path, const std:
     write_manifest(temp / "cloud.json", report);
     read_cloud_manifest(temp / "cloud.json");  // what we wrote must read back
     report.seconds_keyframes = since(t2);
-    for (const auto& e : fs::directory_iterator(temp)) report.bytes_written += fs::file_size(e.path());
+    for (const auto& e : fs::directory_iterator(temp))
+      report.bytes_written += fs::file_size(e.path());
     if (fs::exists(out_dir)) fs::remove(out_dir);  // an empty folder, checked above
     fs::rename(temp, out_dir);
   } catch (...) {

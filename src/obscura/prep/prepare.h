@@ -25,7 +25,7 @@ struct PrepareOptions {
 };
 
 struct PrepareReport {
-  std::filesystem::path manifest;          // out_dir / "cloud.json"
+  std::filesystem::path manifest;  // out_dir / "cloud.json"
   std::vector<std::filesystem::path> keyframes;
   std::vector<double> times_s;
   GridDims dims;
@@ -45,7 +45,8 @@ struct PrepareReport {
 // not exist or be empty. Everything is written into a sibling temporary folder
 // first and renamed at the end, so a failed run leaves nothing behind. Throws
 // InputError naming the file and JSON path on bad input.
-PrepareReport prepare_cloud(const std::filesystem::path& config, const std::filesystem::path& out_dir,
+PrepareReport prepare_cloud(const std::filesystem::path& config,
+                            const std::filesystem::path& out_dir,
                             const PrepareOptions& options = {});
 
 }  // namespace obscura

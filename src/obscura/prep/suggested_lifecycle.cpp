@@ -6,10 +6,13 @@
 
 namespace obscura {
 
-LifecycleSpec suggest_lifecycle(const std::vector<double>& times, std::optional<double> burn_end_s) {
+LifecycleSpec suggest_lifecycle(const std::vector<double>& times,
+                                std::optional<double> burn_end_s) {
   const int n = static_cast<int>(times.size());
   if (n < 2)
-    throw InputError("", "times", "a lifecycle needs at least two keyframes (one after the loop for the extinction)");
+    throw InputError(
+        "", "times",
+        "a lifecycle needs at least two keyframes (one after the loop for the extinction)");
   int e = 0;
   if (burn_end_s)
     for (int k = 0; k < n; ++k)

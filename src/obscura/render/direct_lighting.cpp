@@ -43,17 +43,20 @@ double surface_radiance(const Scene& scene, const SurfaceHit& hit, const Vec3& p
   const Vec3 d = local_to_world(hit.normal, sample_cosine_hemisphere(rng.uniform(), rng.uniform()));
   SurfaceHit other;
   const Ray ray{p, d};
-  if (intersect_surfaces(scene.surfaces, ray, 1e-9, std::numeric_limits<double>::infinity(), other)) {
+  if (intersect_surfaces(scene.surfaces, ray, 1e-9, std::numeric_limits<double>::infinity(),
+                         other)) {
     const SurfaceMaterial& o = scene.surfaces[other.surface]->material();
-    const double t = scene.medium ? estimate_transmittance(*scene.medium, ray, other.t, lambda, rng, scratch)
-                                  : 1.0;
+    const double t = scene.medium
+                         ? estimate_transmittance(*scene.medium, ray, other.t, lambda, rng, scratch)
+                         : 1.0;
     l += reflectance * o.emissivity_at(node.wavelength_um) * node.planck(o.temperature_k) * t;
   } else {
     const double sky = scene.sky.radiance(d, node.wavelength_um);
     if (sky > 0.0)
       l += reflectance * sky *
-           (scene.medium ? estimate_transmittance(*scene.medium, ray, std::numeric_limits<double>::infinity(),
-                                                  lambda, rng, scratch)
+           (scene.medium ? estimate_transmittance(*scene.medium, ray,
+                                                  std::numeric_limits<double>::infinity(), lambda,
+                                                  rng, scratch)
                          : 1.0);
   }
   return l;

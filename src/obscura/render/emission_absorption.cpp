@@ -76,7 +76,8 @@ struct SegmentIntegrand {
 // two-level estimates agree within 15 ε |I| (the Richardson factor of Simpson's
 // rule), then adds the Richardson correction.
 void adaptive_simpson(SegmentIntegrand& f, double a, double b, const double* fa, const double* fm,
-                      const double* fb, const double* whole, double eps, int depth, double* result) {
+                      const double* fb, const double* whole, double eps, int depth,
+                      double* result) {
   const int n = f.count;
   const double m = 0.5 * (a + b);
   NodeArray flm, frm, left, right;

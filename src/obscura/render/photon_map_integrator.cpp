@@ -40,7 +40,8 @@ constexpr int kMaxGatherDepth = 16;
 
 }  // namespace
 
-PhotonMapIntegrator::PhotonMapIntegrator(const Scene& scene, const std::vector<SpectralNodes>& band_nodes,
+PhotonMapIntegrator::PhotonMapIntegrator(const Scene& scene,
+                                         const std::vector<SpectralNodes>& band_nodes,
                                          const PhotonMapSettings& settings, std::uint64_t seed,
                                          int threads)
     : scene_(scene), band_nodes_(band_nodes), settings_(settings) {
@@ -60,9 +61,11 @@ PhotonMapIntegrator::PhotonMapIntegrator(const Scene& scene, const std::vector<S
       m.traced = trace_photons(scene, band_nodes[b].nodes()[j], base, tracing);
       const auto t1 = std::chrono::steady_clock::now();
       m.map = std::make_unique<PhotonMap>(std::move(m.traced.photons));
-      if (scene.sun.enabled) m.sun_irradiance = scene.sun.irradiance(band_nodes[b].nodes()[j].wavelength_um);
+      if (scene.sun.enabled)
+        m.sun_irradiance = scene.sun.irradiance(band_nodes[b].nodes()[j].wavelength_um);
       tracing_seconds_ += std::chrono::duration<double>(t1 - t0).count();
-      build_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
+      build_seconds_ +=
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
       m.traced.photons.clear();
       maps_[b].push_back(std::move(m));
     }
@@ -83,7 +86,8 @@ std::size_t PhotonMapIntegrator::memory_bytes() const {
   return n;
 }
 
-void PhotonMapIntegrator::radiance(const Ray& ray, int band, Rng& rng, double* out, int depth) const {
+void PhotonMapIntegrator::radiance(const Ray& ray, int band, Rng& rng, double* out,
+                                   int depth) const {
   const SpectralNodes& nodes = band_nodes_[band];
   const int n = static_cast<int>(nodes.size());
   const Medium* medium = scene_.medium.get();
@@ -111,7 +115,8 @@ void PhotonMapIntegrator::radiance(const Ray& ray, int band, Rng& rng, double* o
     double weight = 1.0;
     medium->trace_majorants(ray, 0.0, t_max, [&](const MajorantSegment& piece) {
       double majorant = 0.0;
-      for (int k = 0; k < piece.spectral_count; ++k) majorant = std::max(majorant, piece.sigma_majorant[k]);
+      for (int k = 0; k < piece.spectral_count; ++k)
+        majorant = std::max(majorant, piece.sigma_majorant[k]);
       if (!(majorant > 0.0)) return true;
       const double length = piece.t_end - piece.t_begin;
       const double target = std::min(settings_.step_m, 0.5 / majorant);
@@ -145,7 +150,8 @@ void PhotonMapIntegrator::radiance(const Ray& ray, int band, Rng& rng, double* o
           if (!settings_.pure) {
             if (scene_.sun.enabled) {
               const Vec3 to_sun = sample_sun_direction(scene_.sun, rng);
-              source += sigma_s * phase.eval(ray.direction, to_sun) * maps_[band][j].sun_irradiance *
+              source += sigma_s * phase.eval(ray.direction, to_sun) *
+                        maps_[band][j].sun_irradiance *
                         transmittance_to_infinity(scene_, x, to_sun, lambda, rng, scratch);
             }
             // Environment: one direction from the phase function (weight 1).
@@ -153,11 +159,13 @@ void PhotonMapIntegrator::radiance(const Ray& ray, int band, Rng& rng, double* o
             const Ray shadow{x, w};
             SurfaceHit other;
             const bool blocked = intersect_surfaces(scene_.surfaces, shadow, 1e-9, kInf, other);
-            const double tr = estimate_transmittance(*medium, shadow, blocked ? other.t : kInf, lambda, rng, scratch);
+            const double tr = estimate_transmittance(*medium, shadow, blocked ? other.t : kInf,
+                                                     lambda, rng, scratch);
             if (tr > 0.0)
-              source += sigma_s * tr *
-                        (blocked ? surface_radiance(scene_, other, shadow.at(other.t), node, rng, scratch)
-                                 : scene_.sky.radiance(w, node.wavelength_um));
+              source +=
+                  sigma_s * tr *
+                  (blocked ? surface_radiance(scene_, other, shadow.at(other.t), node, rng, scratch)
+                           : scene_.sky.radiance(w, node.wavelength_um));
           }
           // Multiple (or, pure, all) scattering from the k nearest photons.
           const PhotonMap& map = *maps_[band][j].map;
@@ -166,7 +174,8 @@ void PhotonMapIntegrator::radiance(const Ray& ray, int band, Rng& rng, double* o
           // and a wider ball averages it with the brighter inside (a bias that
           // the σs-weighted volume below does not remove).
           const double sigma_t = sigma_s + lambda(point.sigma_a.data());
-          const double r_max = std::min(settings_.max_radius_m, settings_.radius_mean_free_paths / sigma_t);
+          const double r_max =
+              std::min(settings_.max_radius_m, settings_.radius_mean_free_paths / sigma_t);
           map.k_nearest(x, settings_.k, r_max, neighbours);
           if (!neighbours.empty()) {
             const double r2 = static_cast<int>(neighbours.size()) == settings_.k
@@ -236,8 +245,10 @@ void PhotonMapIntegrator::radiance(const Ray& ray, int band, Rng& rng, double* o
     // noise of a dark ground by 1/ρ); deeper gathers continue with probability
     // ρ_max, the band's largest ρ, and weight ρ_j / ρ_max, so the recursion
     // ends without bias.
-    if (reflectance > 0.0 && depth < kMaxGatherDepth && (depth == 0 || rng.uniform() < reflectance)) {
-      const Ray gather{p, local_to_world(hit.normal, sample_cosine_hemisphere(rng.uniform(), rng.uniform()))};
+    if (reflectance > 0.0 && depth < kMaxGatherDepth &&
+        (depth == 0 || rng.uniform() < reflectance)) {
+      const Ray gather{
+          p, local_to_world(hit.normal, sample_cosine_hemisphere(rng.uniform(), rng.uniform()))};
       std::vector<double> gathered(n, 0.0);
       radiance(gather, band, rng, gathered.data(), depth + 1);
       for (int j = 0; j < n; ++j)
@@ -252,7 +263,8 @@ void PhotonMapIntegrator::radiance(const Ray& ray, int band, Rng& rng, double* o
         background[j] += scene_.sun.radiance(node.wavelength_um);
     }
   }
-  for (int j = 0; j < n; ++j) out[j] = emission[j] + transmittance[j] * background[j] + scattered[j];
+  for (int j = 0; j < n; ++j)
+    out[j] = emission[j] + transmittance[j] * background[j] + scattered[j];
 }
 
 }  // namespace obscura

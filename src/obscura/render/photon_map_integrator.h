@@ -35,7 +35,6 @@
 
 namespace obscura {
 
-
 // Photon maps for every spectral node of every band of a sensor, traced once
 // per staged scene; then radiance along rays.
 class PhotonMapIntegrator {
@@ -62,7 +61,8 @@ class PhotonMapIntegrator {
   struct NodeMap {
     TracedPhotons traced;  // photons moved into `map`; powers and counts kept
     std::unique_ptr<PhotonMap> map;
-    double sun_irradiance = 0.0;  // W m⁻² µm⁻¹ at the node, 0 without a sun (used at every marching step)
+    double sun_irradiance =
+        0.0;  // W m⁻² µm⁻¹ at the node, 0 without a sun (used at every marching step)
   };
   const Scene& scene_;
   const std::vector<SpectralNodes>& band_nodes_;

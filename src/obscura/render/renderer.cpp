@@ -55,7 +55,8 @@ SensorImage render_sensor(const Scene& scene, const Sensor& sensor, const Render
 
   // The atmosphere per band (scene/atmosphere.h): its extinction coefficient
   // (1/m) and its own band radiance, (1 − τ) of which joins every ray.
-  std::vector<double> air_extinction_per_m(sensor.bands.size(), 0.0), air_band_radiance(sensor.bands.size(), 0.0);
+  std::vector<double> air_extinction_per_m(sensor.bands.size(), 0.0),
+      air_band_radiance(sensor.bands.size(), 0.0);
   if (scene.atmosphere.enabled)
     for (std::size_t b = 0; b < sensor.bands.size(); ++b) {
       air_extinction_per_m[b] = scene.atmosphere.extinction_for(sensor.bands[b]);
@@ -67,11 +68,12 @@ SensorImage render_sensor(const Scene& scene, const Sensor& sensor, const Render
   std::unique_ptr<PhotonMapIntegrator> photon_map;
   if (photon_mapping) {
     const auto t0 = std::chrono::steady_clock::now();
-    photon_map = std::make_unique<PhotonMapIntegrator>(scene, band_nodes, settings.photon_map, options.seed,
-                                                       options.threads);
+    photon_map = std::make_unique<PhotonMapIntegrator>(scene, band_nodes, settings.photon_map,
+                                                       options.seed, options.threads);
     image.stats.photons = photon_map->photon_count();
     image.stats.photon_bytes = photon_map->memory_bytes();
-    image.stats.photon_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    image.stats.photon_seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     image.stats.photon_trace_seconds = photon_map->tracing_seconds();
     image.stats.photon_build_seconds = photon_map->build_seconds();
   }
@@ -97,78 +99,84 @@ SensorImage render_sensor(const Scene& scene, const Sensor& sensor, const Render
       // Rounds of spp stratified samples; more than one only for a path tracer
       // with a target relative standard error.
       for (bool more = true; more;) {
-      for (int s = 0; s < spp; ++s, ++n) {
-        double px = x + 0.5, py = y + 0.5;
-        if (spp > 1) {
-          const int sx = s % strata_x, sy = s / strata_x;
-          const int strata_y = (spp + strata_x - 1) / strata_x;
-          px = x + (sx + rng.uniform()) / strata_x;
-          py = y + (sy + rng.uniform()) / strata_y;
-        }
-        const Ray ray = cam.generate_ray(px, py);
-        SurfaceHit hit;
-        const bool hit_surface = intersect_surfaces(scene.surfaces, ray, 0.0,
-                                                    std::numeric_limits<double>::infinity(), hit);
-        const double t_max = hit_surface ? hit.t : std::numeric_limits<double>::infinity();
-        // The path tracer reports the exact line-of-sight transmittance: τ per
-        // medium sample, once per ray for all bands.
-        const std::vector<double> line_of_sight_tau =
-            path_tracer && scene.medium ? scene.medium->optical_depth(ray, 0.0, t_max)
-                                        : std::vector<double>(path_tracer ? medium_wl.size() : 0, 0.0);
-        // How far the ray runs through the air before it meets the scene
-        // (scene/atmosphere.h): to the surface, else through the clouds' box.
-        double air_path_m = hit_surface ? hit.t : 0.0;
-        if (scene.atmosphere.enabled && !hit_surface && scene.medium) {
-          double t0 = 0.0, t1 = std::numeric_limits<double>::infinity();
-          if (scene.medium->bounds().intersect(ray, t0, t1)) air_path_m = t1;
-        }
-        for (std::size_t b = 0; b < image.bands.size(); ++b) {
-          const SpectralNodes& nodes = band_nodes[b];
-          const int n = static_cast<int>(nodes.size());
-          double band_l = 0, band_t = 0;
-          if (path_tracer) {
-            if (photon_mapping) photon_map->radiance(ray, static_cast<int>(b), rng, radiance.data());
-            // One path per spectral node (or one photon-map estimate).
-            for (int i = 0; i < n; ++i) {
-              const SpectralNode& nd = nodes.nodes()[i];
-              band_l += nd.weight_um * (photon_mapping ? radiance[i] : trace_path(scene, ray, nd, rng));
-              band_t += nd.weight_um * std::exp(-nd.lerp()(line_of_sight_tau.data()));
-            }
-          } else {
-            for (int i = 0; i < n; ++i) { radiance[i] = 0.0; transmittance[i] = 1.0; }
-            integrate_emission_absorption(scene.medium.get(), ray, t_max, nodes,
-                                          settings.relative_tolerance, radiance.data(),
-                                          transmittance.data(), &stats);
-            for (int i = 0; i < n; ++i) {
-              const SpectralNode& nd = nodes.nodes()[i];
-              double background = scene.sky.radiance(ray.direction, nd.wavelength_um);
-              if (hit_surface) {
-                const SurfaceMaterial& m = scene.surfaces[hit.surface]->material();
-                // Opaque Lambertian surface: emits ε B(T) and reflects
-                // (1 − ε) of the sky it faces (clouds' light on surfaces is the
-                // path tracer's job).
-                const double emissivity = m.emissivity_at(nd.wavelength_um);
-                background = emissivity * nd.planck(m.temperature_k) +
-                             (1.0 - emissivity) *
-                                 scene.sky.cosine_weighted_mean(hit.normal, nd.wavelength_um);
+        for (int s = 0; s < spp; ++s, ++n) {
+          double px = x + 0.5, py = y + 0.5;
+          if (spp > 1) {
+            const int sx = s % strata_x, sy = s / strata_x;
+            const int strata_y = (spp + strata_x - 1) / strata_x;
+            px = x + (sx + rng.uniform()) / strata_x;
+            py = y + (sy + rng.uniform()) / strata_y;
+          }
+          const Ray ray = cam.generate_ray(px, py);
+          SurfaceHit hit;
+          const bool hit_surface = intersect_surfaces(scene.surfaces, ray, 0.0,
+                                                      std::numeric_limits<double>::infinity(), hit);
+          const double t_max = hit_surface ? hit.t : std::numeric_limits<double>::infinity();
+          // The path tracer reports the exact line-of-sight transmittance: τ per
+          // medium sample, once per ray for all bands.
+          const std::vector<double> line_of_sight_tau =
+              path_tracer && scene.medium
+                  ? scene.medium->optical_depth(ray, 0.0, t_max)
+                  : std::vector<double>(path_tracer ? medium_wl.size() : 0, 0.0);
+          // How far the ray runs through the air before it meets the scene
+          // (scene/atmosphere.h): to the surface, else through the clouds' box.
+          double air_path_m = hit_surface ? hit.t : 0.0;
+          if (scene.atmosphere.enabled && !hit_surface && scene.medium) {
+            double t0 = 0.0, t1 = std::numeric_limits<double>::infinity();
+            if (scene.medium->bounds().intersect(ray, t0, t1)) air_path_m = t1;
+          }
+          for (std::size_t b = 0; b < image.bands.size(); ++b) {
+            const SpectralNodes& nodes = band_nodes[b];
+            const int n = static_cast<int>(nodes.size());
+            double band_l = 0, band_t = 0;
+            if (path_tracer) {
+              if (photon_mapping)
+                photon_map->radiance(ray, static_cast<int>(b), rng, radiance.data());
+              // One path per spectral node (or one photon-map estimate).
+              for (int i = 0; i < n; ++i) {
+                const SpectralNode& nd = nodes.nodes()[i];
+                band_l +=
+                    nd.weight_um * (photon_mapping ? radiance[i] : trace_path(scene, ray, nd, rng));
+                band_t += nd.weight_um * std::exp(-nd.lerp()(line_of_sight_tau.data()));
               }
-              band_l += nd.weight_um * (radiance[i] + transmittance[i] * background);
-              band_t += nd.weight_um * transmittance[i];
+            } else {
+              for (int i = 0; i < n; ++i) {
+                radiance[i] = 0.0;
+                transmittance[i] = 1.0;
+              }
+              integrate_emission_absorption(scene.medium.get(), ray, t_max, nodes,
+                                            settings.relative_tolerance, radiance.data(),
+                                            transmittance.data(), &stats);
+              for (int i = 0; i < n; ++i) {
+                const SpectralNode& nd = nodes.nodes()[i];
+                double background = scene.sky.radiance(ray.direction, nd.wavelength_um);
+                if (hit_surface) {
+                  const SurfaceMaterial& m = scene.surfaces[hit.surface]->material();
+                  // Opaque Lambertian surface: emits ε B(T) and reflects
+                  // (1 − ε) of the sky it faces (clouds' light on surfaces is the
+                  // path tracer's job).
+                  const double emissivity = m.emissivity_at(nd.wavelength_um);
+                  background = emissivity * nd.planck(m.temperature_k) +
+                               (1.0 - emissivity) *
+                                   scene.sky.cosine_weighted_mean(hit.normal, nd.wavelength_um);
+                }
+                band_l += nd.weight_um * (radiance[i] + transmittance[i] * background);
+                band_t += nd.weight_um * transmittance[i];
+              }
             }
+            if (scene.atmosphere.enabled) {
+              const double tau_air = std::exp(-air_extinction_per_m[b] * air_path_m);
+              band_l = tau_air * band_l + (1.0 - tau_air) * air_band_radiance[b];
+            }
+            sum_l[b] += band_l;
+            sum_l2[b] += band_l * band_l;
+            sum_t[b] += band_t / nodes.quadrature().response_integral();
           }
-          if (scene.atmosphere.enabled) {
-            const double tau_air = std::exp(-air_extinction_per_m[b] * air_path_m);
-            band_l = tau_air * band_l + (1.0 - tau_air) * air_band_radiance[b];
-          }
-          sum_l[b] += band_l;
-          sum_l2[b] += band_l * band_l;
-          sum_t[b] += band_t / nodes.quadrature().response_integral();
         }
-      }
-      more = false;
-      if (path_tracer && target > 0.0 && n + spp <= max_spp)
-        for (std::size_t b = 0; b < sum_l.size(); ++b)
-          more = more || standard_error(sum_l[b], sum_l2[b], n) > target * std::abs(sum_l[b] / n);
+        more = false;
+        if (path_tracer && target > 0.0 && n + spp <= max_spp)
+          for (std::size_t b = 0; b < sum_l.size(); ++b)
+            more = more || standard_error(sum_l[b], sum_l2[b], n) > target * std::abs(sum_l[b] / n);
       }
       samples_taken += n;
       image.samples_per_pixel[pixel] = static_cast<std::uint32_t>(n);
@@ -179,7 +187,8 @@ SensorImage render_sensor(const Scene& scene, const Sensor& sensor, const Render
         image.bands[b].apparent_temperature[pixel] =
             static_cast<float>(band_nodes[b].quadrature().apparent_temperature(l));
         if (path_tracer)
-          image.bands[b].radiance_stderr[pixel] = static_cast<float>(standard_error(sum_l[b], sum_l2[b], n));
+          image.bands[b].radiance_stderr[pixel] =
+              static_cast<float>(standard_error(sum_l[b], sum_l2[b], n));
       }
     }
     segments += stats.segments;

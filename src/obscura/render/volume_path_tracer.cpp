@@ -5,8 +5,8 @@
 #include <numbers>
 
 #include "obscura/core/sampling.h"
-#include "obscura/render/direct_lighting.h"
 #include "obscura/medium/phase_function.h"
+#include "obscura/render/direct_lighting.h"
 
 namespace obscura {
 namespace {
@@ -52,13 +52,14 @@ double trace_path(const Scene& scene, const Ray& camera_ray, const SpectralNode&
   double last_scatter_pdf = 0.0;  // density of the direction the path now follows
   for (int depth = 0; depth < settings.max_depth; ++depth) {
     SurfaceHit hit;
-    const bool on_surface = intersect_surfaces(scene.surfaces, ray, 1e-9,
-                                               std::numeric_limits<double>::infinity(), hit);
+    const bool on_surface =
+        intersect_surfaces(scene.surfaces, ray, 1e-9, std::numeric_limits<double>::infinity(), hit);
     const double t_surface = on_surface ? hit.t : std::numeric_limits<double>::infinity();
     const auto collision =
         medium ? sample_free_flight(*medium, ray, t_surface, lambda, rng, point) : std::nullopt;
     if (collision) {
-      // `point` holds the coefficients at the accepted collision (sample_free_flight's last evaluation).
+      // `point` holds the coefficients at the accepted collision (sample_free_flight's last
+      // evaluation).
       const double sigma_a = lambda(point.sigma_a.data());
       const double sigma_s = lambda(point.sigma_s.data());
       const double sigma_t = sigma_a + sigma_s;
@@ -76,8 +77,9 @@ double trace_path(const Scene& scene, const Ray& camera_ray, const SpectralNode&
                       transmittance_to_infinity(scene, position, to_sun, lambda, rng, point);
       }
       if (sky_lit)
-        radiance += beta * sky_next_event(scene, position, node, lambda, rng, point,
-                                          [&](const Vec3& d) { return phase.eval(ray.direction, d); });
+        radiance +=
+            beta * sky_next_event(scene, position, node, lambda, rng, point,
+                                  [&](const Vec3& d) { return phase.eval(ray.direction, d); });
       double pdf = 0.0;
       ray = Ray{position, phase.sample(ray.direction, rng.uniform(), rng.uniform(), &pdf)};
       last_scatter_pdf = pdf;
@@ -97,19 +99,21 @@ double trace_path(const Scene& scene, const Ray& camera_ray, const SpectralNode&
                       transmittance_to_infinity(scene, position, to_sun, lambda, rng, point);
       }
       if (sky_lit)
-        radiance += beta * sky_next_event(scene, position, node, lambda, rng, point, [&](const Vec3& d) {
-                      return std::max(0.0, dot(hit.normal, d)) * std::numbers::inv_pi;
-                    });
-      ray = Ray{position, local_to_world(hit.normal,
-                                         sample_cosine_hemisphere(rng.uniform(), rng.uniform()))};
+        radiance +=
+            beta * sky_next_event(scene, position, node, lambda, rng, point, [&](const Vec3& d) {
+              return std::max(0.0, dot(hit.normal, d)) * std::numbers::inv_pi;
+            });
+      ray = Ray{position,
+                local_to_world(hit.normal, sample_cosine_hemisphere(rng.uniform(), rng.uniform()))};
       last_scatter_pdf = std::max(0.0, dot(hit.normal, ray.direction)) * std::numbers::inv_pi;
     } else {
       // After a bounce the sky was also sampled by next-event estimation: the
       // two estimators are combined with the power heuristic.
       const double sky = scene.sky.radiance(ray.direction, node.wavelength_um);
       radiance += beta * sky *
-                  (depth == 0 || !sky_lit ? 1.0
-                                          : power_heuristic(last_scatter_pdf, scene.sky.pdf(ray.direction)));
+                  (depth == 0 || !sky_lit
+                       ? 1.0
+                       : power_heuristic(last_scatter_pdf, scene.sky.pdf(ray.direction)));
       // The sun's disc is seen directly only by camera rays: after a bounce,
       // next-event estimation already counts it.
       if (depth == 0 && settings.camera_sees_sun && scene.sun.enabled &&

@@ -20,10 +20,12 @@ Scene make_study_scene(StudyScene which, int width, int height, const std::strin
   spec.ambient_temperature_k = 288;
   spec.temperature_excess_k = 12;
   Scene scene;
-  scene.medium = std::make_shared<GridMedium>(std::make_shared<VoxelGrid>(make_gaussian_puff(spec)));
-  scene.surfaces.push_back(std::make_unique<GroundPlane>("ground", SurfaceMaterial{288, visible ? 0.8 : 0.95}, 0.0));
+  scene.medium =
+      std::make_shared<GridMedium>(std::make_shared<VoxelGrid>(make_gaussian_puff(spec)));
   scene.surfaces.push_back(
-      std::make_unique<BoxSurface>("target", SurfaceMaterial{330, 0.9}, BBox3({-3, 0, 0}, {3, 6, 2.5})));
+      std::make_unique<GroundPlane>("ground", SurfaceMaterial{288, visible ? 0.8 : 0.95}, 0.0));
+  scene.surfaces.push_back(std::make_unique<BoxSurface>("target", SurfaceMaterial{330, 0.9},
+                                                        BBox3({-3, 0, 0}, {3, 6, 2.5})));
   if (visible) {
     scene.sky = Sky::zenith_table({0, 90}, {0.55}, {{60.0}, {60.0}});
     scene.sun.enabled = true;

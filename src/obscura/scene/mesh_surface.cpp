@@ -123,7 +123,8 @@ MeshSurface::MeshSurface(std::string name, SurfaceMaterial material, const Trian
     throw Error(fmt::format("surface '{}': too many triangles for Embree", this->name()));
   centre_ = bounds_.center();
   margin_ = 1e-4 * std::max(length(bounds_.extent()), 1e-6);
-  padded_bounds_ = BBox3(bounds_.lo - Vec3(margin_, margin_, margin_), bounds_.hi + Vec3(margin_, margin_, margin_));
+  padded_bounds_ = BBox3(bounds_.lo - Vec3(margin_, margin_, margin_),
+                         bounds_.hi + Vec3(margin_, margin_, margin_));
 
   RTCDevice device = embree_device();
   rtcRetainDevice(device);

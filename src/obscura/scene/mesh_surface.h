@@ -70,7 +70,7 @@ class MeshSurface final : public Surface {
   std::vector<std::array<std::uint32_t, 3>> triangles_;  // those with an area, in BVH order
   BBox3 bounds_;
   Vec3 centre_;
-  double margin_ = 0;  // m: how far the float ray starts before the box, and Embree's slack
+  double margin_ = 0;    // m: how far the float ray starts before the box, and Embree's slack
   BBox3 padded_bounds_;  // bounds_ grown by margin_ on every side: where rays are clipped
   std::unique_ptr<RTCSceneTy, SceneRelease> scene_;
 };

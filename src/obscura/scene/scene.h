@@ -2,9 +2,8 @@
 // Everything a render needs, loaded from a scene file (docs/formats.md).
 #include <filesystem>
 #include <memory>
-#include <vector>
-
 #include <nlohmann/json.hpp>
+#include <vector>
 
 #include "obscura/medium/medium.h"
 #include "obscura/scene/animated_cloud.h"
@@ -32,7 +31,7 @@ struct Scene {
   // (null when none is). Set by stage_scene.
   std::shared_ptr<const Medium> medium;
   double time_s = 0.0;
-  std::vector<std::shared_ptr<const Medium>> static_clouds;      // present at all times
+  std::vector<std::shared_ptr<const Medium>> static_clouds;     // present at all times
   std::vector<std::shared_ptr<AnimatedCloud>> animated_clouds;  // keyframed, with lifecycles
   std::vector<PixelRegion> regions;
   std::vector<std::unique_ptr<Surface>> surfaces;

@@ -1,18 +1,18 @@
 // Scene files: JSON documents described in docs/formats.md. Every value is
 // checked where it is read, errors name the file and the JSON path, and a key
 // that nothing reads is an error (a typo must not pass silently).
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
 #include <cmath>
 #include <optional>
 #include <set>
 
-#include <fmt/format.h>
-#include <fmt/ranges.h>
-
 #include "obscura/io/cloud_manifest.h"
 #include "obscura/io/json_reader.h"
 #include "obscura/io/obj_mesh.h"
-#include "obscura/medium/composite_medium.h"
 #include "obscura/io/vdb_keyframe.h"
+#include "obscura/medium/composite_medium.h"
 #include "obscura/medium/grid_medium.h"
 #include "obscura/medium/homogeneous_medium.h"
 #include "obscura/scene/heightfield.h"
@@ -33,7 +33,9 @@ SurfaceMaterial parse_surface_material(JsonObject& o) {
   if (o.has("emissivity") && o.raw("emissivity").is_array()) {
     // A table of [wavelength_um, emissivity] points.
     const auto& arr = o.array("emissivity");
-    if (arr.empty()) throw o.error("emissivity", "the table is empty (expected [[wavelength_um, emissivity], ...])");
+    if (arr.empty())
+      throw o.error("emissivity",
+                    "the table is empty (expected [[wavelength_um, emissivity], ...])");
     for (std::size_t i = 0; i < arr.size(); ++i) {
       const auto& p = arr[i];
       const std::string at = fmt::format("emissivity/{}", i);
@@ -48,7 +50,8 @@ SurfaceMaterial parse_surface_material(JsonObject& o) {
     }
   } else {
     m.emissivity = o.number_or("emissivity", 1.0);
-    if (!(m.emissivity >= 0 && m.emissivity <= 1)) throw o.error("emissivity", "must lie in [0, 1]");
+    if (!(m.emissivity >= 0 && m.emissivity <= 1))
+      throw o.error("emissivity", "must lie in [0, 1]");
   }
   return m;
 }
@@ -93,7 +96,8 @@ void parse_mesh(JsonObject& o, const std::string& name, const std::filesystem::p
   mesh.translate(o.vec3_or("position", Vec3(0, 0, 0)));
   const bool target = o.boolean_or("target", false);
   std::optional<SurfaceMaterial> defaults;
-  if (o.has("temperature")) defaults = parse_surface_material(o);
+  if (o.has("temperature"))
+    defaults = parse_surface_material(o);
   else if (o.has("emissivity"))
     throw o.error("emissivity",
                   "give \"temperature\" with it (the default material of every part)");
@@ -135,8 +139,8 @@ void parse_heightfield(JsonObject& o, const std::string& name, const std::filesy
   const bool target = o.boolean_or("target", false);
   o.finish();
   const Heightfield h = read_heightfield_csv(file);
-  scene.surfaces.push_back(mesh_surface(
-      o, name, m, heightfield_mesh(h, origin[0], origin[1], spacing, name), target));
+  scene.surfaces.push_back(
+      mesh_surface(o, name, m, heightfield_mesh(h, origin[0], origin[1], spacing, name), target));
 }
 
 // One entry of "/surfaces": one Surface, or one per part of a mesh.
@@ -209,8 +213,10 @@ Sensor parse_sensor(JsonObject o, int index) {
   const double fov = o.number("fov_deg");
   if (!(fov > 0 && fov < 180)) throw o.error("fov_deg", "must lie in (0, 180) degrees");
   const long long w = o.integer("width"), h = o.integer("height");
-  if (w < 1 || w > kMaxImageSide) throw o.error("width", fmt::format("must lie in [1, {}]", kMaxImageSide));
-  if (h < 1 || h > kMaxImageSide) throw o.error("height", fmt::format("must lie in [1, {}]", kMaxImageSide));
+  if (w < 1 || w > kMaxImageSide)
+    throw o.error("width", fmt::format("must lie in [1, {}]", kMaxImageSide));
+  if (h < 1 || h > kMaxImageSide)
+    throw o.error("height", fmt::format("must lie in [1, {}]", kMaxImageSide));
   try {
     s.camera = PinholeCamera(position, look_at, up, fov, static_cast<int>(w), static_cast<int>(h));
   } catch (const Error& e) {
@@ -223,7 +229,8 @@ Sensor parse_sensor(JsonObject o, int index) {
     const std::string path = fmt::format("{}/{}", o.path_of("bands"), i);
     s.bands.push_back(parse_band(bands[i], o.file(), path));
     if (!names.insert(s.bands.back().name()).second)
-      throw InputError(o.file(), path, fmt::format("duplicate band name '{}'", s.bands.back().name()));
+      throw InputError(o.file(), path,
+                       fmt::format("duplicate band name '{}'", s.bands.back().name()));
   }
   o.finish();
   return s;
@@ -266,8 +273,9 @@ void parse_cloud(JsonObject o, const std::filesystem::path& base, Scene& scene, 
       throw o.error(e.field(), e.detail());
     }
   } else {
-    throw o.error("type",
-                  fmt::format("unknown cloud type '{}' (expected vdb, homogeneous or animated)", type));
+    throw o.error(
+        "type",
+        fmt::format("unknown cloud type '{}' (expected vdb, homogeneous or animated)", type));
   }
   o.finish();
   scene.static_clouds.push_back(std::move(m));
@@ -282,7 +290,8 @@ PixelRegion parse_region(JsonObject o, const Scene& scene) {
     if (s.name == r.sensor) sensor = &s;
   if (!sensor) throw o.error("sensor", fmt::format("no sensor named '{}'", r.sensor));
   const auto px = o.numbers("pixels");
-  if (px.size() != 4) throw o.error("pixels", "expected [x0, y0, x1, y1] (pixels, x1 and y1 excluded)");
+  if (px.size() != 4)
+    throw o.error("pixels", "expected [x0, y0, x1, y1] (pixels, x1 and y1 excluded)");
   for (double v : px)
     if (v != std::floor(v)) throw o.error("pixels", "pixel coordinates must be whole numbers");
   r.x0 = static_cast<int>(px[0]);
@@ -312,8 +321,9 @@ Sky parse_sky(JsonObject& sky) {
     return Sky::blackbody(t, below);
   }
   if (!sky.has("zenith_deg"))
-    throw sky.error("temperature", "give a brightness temperature (K) or a table: zenith_deg, "
-                                   "wavelengths_um and radiance (W m-2 sr-1 um-1)");
+    throw sky.error("temperature",
+                    "give a brightness temperature (K) or a table: zenith_deg, "
+                    "wavelengths_um and radiance (W m-2 sr-1 um-1)");
   std::vector<double> zenith = sky.numbers("zenith_deg");
   std::vector<double> wavelengths = sky.numbers("wavelengths_um");
   const auto& rows = sky.array("radiance");
@@ -352,8 +362,8 @@ Scene parse_scene(const nlohmann::json& doc, const std::filesystem::path& file) 
   if (sensors.empty()) throw root.error("sensors", "needs at least one sensor");
   std::set<std::string> sensor_names;
   for (std::size_t i = 0; i < sensors.size(); ++i) {
-    scene.sensors.push_back(
-        parse_sensor(JsonObject(sensors[i], fname, fmt::format("/sensors/{}", i)), static_cast<int>(i)));
+    scene.sensors.push_back(parse_sensor(
+        JsonObject(sensors[i], fname, fmt::format("/sensors/{}", i)), static_cast<int>(i)));
     if (!sensor_names.insert(scene.sensors.back().name).second)
       throw InputError(fname, fmt::format("/sensors/{}/name", i), "duplicate sensor name");
   }
@@ -371,7 +381,8 @@ Scene parse_scene(const nlohmann::json& doc, const std::filesystem::path& file) 
   if (root.has("regions")) {
     const auto& regions = root.array("regions");
     for (std::size_t i = 0; i < regions.size(); ++i)
-      scene.regions.push_back(parse_region(JsonObject(regions[i], fname, fmt::format("/regions/{}", i)), scene));
+      scene.regions.push_back(
+          parse_region(JsonObject(regions[i], fname, fmt::format("/regions/{}", i)), scene));
   }
 
   if (root.has("surfaces")) {
@@ -399,7 +410,8 @@ Scene parse_scene(const nlohmann::json& doc, const std::filesystem::path& file) 
     if (ext.is_number()) {
       a.extinction_per_m["*"] = coefficient(ext, ext_path);
     } else if (ext.is_object()) {
-      for (const auto& [band, v] : ext.items()) a.extinction_per_m[band] = coefficient(v, ext_path + "/" + band);
+      for (const auto& [band, v] : ext.items())
+        a.extinction_per_m[band] = coefficient(v, ext_path + "/" + band);
     } else {
       throw atm->error("extinction_per_km",
                        "expected a number (1/km, every band) or an object of band name → 1/km");
@@ -407,23 +419,26 @@ Scene parse_scene(const nlohmann::json& doc, const std::filesystem::path& file) 
     for (std::size_t i = 0; i < scene.sensors.size(); ++i)
       for (const Band& b : scene.sensors[i].bands)
         if (!a.extinction_per_m.count(b.name()) && !a.extinction_per_m.count("*"))
-          throw InputError(fname, ext_path,
-                           fmt::format("no coefficient for band '{}' of sensor '{}' (give one per band, "
-                                       "or a number for all)",
-                                       b.name(), scene.sensors[i].name));
+          throw InputError(
+              fname, ext_path,
+              fmt::format("no coefficient for band '{}' of sensor '{}' (give one per band, "
+                          "or a number for all)",
+                          b.name(), scene.sensors[i].name));
     atm->finish();
   }
 
   if (auto m = root.optional_object("metrics")) {
     MetricsSettings& ms = scene.metrics;
-    ms.transmittance_threshold = m->number_or("transmittance_threshold", ms.transmittance_threshold);
+    ms.transmittance_threshold =
+        m->number_or("transmittance_threshold", ms.transmittance_threshold);
     if (!(ms.transmittance_threshold > 0 && ms.transmittance_threshold < 1))
       throw m->error("transmittance_threshold", "must lie in (0, 1)");
     ms.screened_fraction = m->number_or("screened_fraction", ms.screened_fraction);
     if (!(ms.screened_fraction > 0 && ms.screened_fraction <= 1))
       throw m->error("screened_fraction", "must lie in (0, 1]");
     const long long margin = m->integer_or("background_margin_px", ms.background_margin_px);
-    if (margin < 1 || margin > kMaxImageSide) throw m->error("background_margin_px", "must be >= 1 pixel");
+    if (margin < 1 || margin > kMaxImageSide)
+      throw m->error("background_margin_px", "must be >= 1 pixel");
     ms.background_margin_px = static_cast<int>(margin);
     m->finish();
   }
@@ -434,7 +449,8 @@ Scene parse_scene(const nlohmann::json& doc, const std::filesystem::path& file) 
     s.azimuth_deg = sun->number("azimuth_deg");
     s.elevation_deg = sun->number("elevation_deg");
     if (!(s.elevation_deg > 0 && s.elevation_deg <= 90))
-      throw sun->error("elevation_deg", "must lie in (0, 90] degrees: a sun below the horizon lights nothing");
+      throw sun->error("elevation_deg",
+                       "must lie in (0, 90] degrees: a sun below the horizon lights nothing");
     s.angular_diameter_deg = sun->number_or("angular_diameter_deg", s.angular_diameter_deg);
     if (!(s.angular_diameter_deg > 0 && s.angular_diameter_deg < 10))
       throw sun->error("angular_diameter_deg", "must lie in (0, 10) degrees");
@@ -442,7 +458,8 @@ Scene parse_scene(const nlohmann::json& doc, const std::filesystem::path& file) 
     if (!(s.temperature_k > 0)) throw sun->error("temperature", "must be > 0 K");
     s.total_irradiance_w_m2 = sun->number_or("total_irradiance", s.total_irradiance_w_m2);
     if (!(s.total_irradiance_w_m2 >= 0))
-      throw sun->error("total_irradiance", "must be >= 0 W m-2 (a negative irradiance is not light)");
+      throw sun->error("total_irradiance",
+                       "must be >= 0 W m-2 (a negative irradiance is not light)");
     if (auto table = sun->optional_object("irradiance_table")) {
       if (sun->has("temperature") || sun->has("total_irradiance"))
         throw sun->error("irradiance_table",
@@ -452,12 +469,14 @@ Scene parse_scene(const nlohmann::json& doc, const std::filesystem::path& file) 
       if (s.table_wavelengths_um.size() < 2)
         throw table->error("wavelengths_um", "needs at least two wavelengths");
       if (s.table_irradiance_w_m2_um.size() != s.table_wavelengths_um.size())
-        throw table->error("irradiance_w_m2_um",
-                           fmt::format("needs one value per wavelength ({}, got {})",
-                                       s.table_wavelengths_um.size(), s.table_irradiance_w_m2_um.size()));
+        throw table->error(
+            "irradiance_w_m2_um",
+            fmt::format("needs one value per wavelength ({}, got {})",
+                        s.table_wavelengths_um.size(), s.table_irradiance_w_m2_um.size()));
       for (std::size_t i = 0; i < s.table_wavelengths_um.size(); ++i) {
         if (!(s.table_wavelengths_um[i] > (i ? s.table_wavelengths_um[i - 1] : 0.0)))
-          throw table->error(fmt::format("wavelengths_um/{}", i), "must be > 0 µm and strictly increasing");
+          throw table->error(fmt::format("wavelengths_um/{}", i),
+                             "must be > 0 µm and strictly increasing");
         if (!(s.table_irradiance_w_m2_um[i] >= 0))
           throw table->error(fmt::format("irradiance_w_m2_um/{}", i),
                              "must be >= 0 W m-2 um-1 (a negative irradiance is not light)");
@@ -486,11 +505,13 @@ Scene parse_scene(const nlohmann::json& doc, const std::filesystem::path& file) 
       p.k = static_cast<int>(k);
       p.max_radius_m = pm->positive_or("max_radius_m", p.max_radius_m);
       p.step_m = pm->positive_or("step_m", p.step_m);
-      p.radius_mean_free_paths = pm->positive_or("radius_mean_free_paths", p.radius_mean_free_paths);
+      p.radius_mean_free_paths =
+          pm->positive_or("radius_mean_free_paths", p.radius_mean_free_paths);
       const std::string form = pm->string_or("form", "hybrid");
       if (form != "hybrid" && form != "pure")
-        throw pm->error("form", "must be \"hybrid\" (shadow rays for single scattering) or \"pure\" "
-                                "(photons for all scattering, the source paper's form)");
+        throw pm->error("form",
+                        "must be \"hybrid\" (shadow rays for single scattering) or \"pure\" "
+                        "(photons for all scattering, the source paper's form)");
       p.pure = form == "pure";
       pm->finish();
     }
@@ -501,7 +522,8 @@ Scene parse_scene(const nlohmann::json& doc, const std::filesystem::path& file) 
     if (!(s.target_relative_stderr >= 0 && s.target_relative_stderr < 1))
       throw r->error("target_relative_stderr", "must lie in [0, 1) (0: a fixed sample count)");
     const long long max_spp = r->integer_or("max_samples_per_pixel", s.max_samples_per_pixel);
-    if (max_spp < 1 || max_spp > 1048576) throw r->error("max_samples_per_pixel", "must lie in [1, 1048576]");
+    if (max_spp < 1 || max_spp > 1048576)
+      throw r->error("max_samples_per_pixel", "must lie in [1, 1048576]");
     s.max_samples_per_pixel = static_cast<int>(max_spp);
     const long long nodes = r->integer_or("spectral_nodes_per_band", s.spectral_nodes_per_band);
     if (nodes < 1 || nodes > 64) throw r->error("spectral_nodes_per_band", "must lie in [1, 64]");
@@ -513,16 +535,20 @@ Scene parse_scene(const nlohmann::json& doc, const std::filesystem::path& file) 
     if (seed < 0) throw r->error("seed", "must be >= 0");
     s.seed = static_cast<std::uint64_t>(seed);
     const long long threads = r->integer_or("threads", s.threads);
-    if (threads < 0 || threads > 4096) throw r->error("threads", "must lie in [0, 4096] (0: all cores)");
+    if (threads < 0 || threads > 4096)
+      throw r->error("threads", "must lie in [0, 4096] (0: all cores)");
     s.threads = static_cast<int>(threads);
     r->finish();
   }
   if (scene.settings.target_relative_stderr > 0 && scene.settings.method == "emission-absorption")
-    throw root.error("render", "target_relative_stderr applies to the Monte Carlo methods only (set "
-                               "/render/method to \"path-tracer\" or \"photonmap\")");
+    throw root.error("render",
+                     "target_relative_stderr applies to the Monte Carlo methods only (set "
+                     "/render/method to \"path-tracer\" or \"photonmap\")");
   if (scene.sun.enabled && scene.settings.method == "emission-absorption")
-    throw root.error("sun", "the sun lights clouds through scattering: set /render/method to "
-                            "\"path-tracer\" or \"photonmap\" (emission-absorption has no scattering source)");
+    throw root.error(
+        "sun",
+        "the sun lights clouds through scattering: set /render/method to "
+        "\"path-tracer\" or \"photonmap\" (emission-absorption has no scattering source)");
   root.string_or("description", "");
   root.finish();
   stage_scene(scene, 0.0);
@@ -534,9 +560,12 @@ void stage_scene(Scene& scene, double t) {
   for (auto& cloud : scene.animated_clouds)
     if (auto m = cloud->stage(t)) present.push_back(std::move(m));
   scene.time_s = t;
-  if (present.empty()) scene.medium = nullptr;
-  else if (present.size() == 1) scene.medium = present.front();
-  else scene.medium = std::make_shared<CompositeMedium>(std::move(present));
+  if (present.empty())
+    scene.medium = nullptr;
+  else if (present.size() == 1)
+    scene.medium = present.front();
+  else
+    scene.medium = std::make_shared<CompositeMedium>(std::move(present));
 }
 
 Scene load_scene(const std::filesystem::path& path) {

@@ -1,10 +1,10 @@
 #include "obscura/scene/sky.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
-
-#include <fmt/format.h>
 
 #include "obscura/core/band.h"
 #include "obscura/core/error.h"
@@ -78,9 +78,9 @@ Sky Sky::zenith_table(std::vector<double> zenith_deg, std::vector<double> wavele
   const std::size_t nw = wavelengths_um.size();
   for (std::size_t i = 0; i < radiance.size(); ++i) {
     if (radiance[i].size() != nw)
-      throw InputError(source, fmt::format("radiance/{}", i),
-                       fmt::format("needs one value per wavelength ({}, got {})", nw,
-                                   radiance[i].size()));
+      throw InputError(
+          source, fmt::format("radiance/{}", i),
+          fmt::format("needs one value per wavelength ({}, got {})", nw, radiance[i].size()));
     for (std::size_t j = 0; j < nw; ++j) {
       if (!(std::isfinite(radiance[i][j]) && radiance[i][j] >= 0.0))
         throw InputError(source, fmt::format("radiance/{}/{}", i, j),
@@ -97,14 +97,16 @@ Sky Sky::zenith_table(std::vector<double> zenith_deg, std::vector<double> wavele
   const std::size_t nz = s.zenith_deg_.size();
   std::vector<double> column_max(nw, 0.0);
   for (std::size_t i = 0; i < nz; ++i)
-    for (std::size_t j = 0; j < nw; ++j) column_max[j] = std::max(column_max[j], s.radiance_[i * nw + j]);
+    for (std::size_t j = 0; j < nw; ++j)
+      column_max[j] = std::max(column_max[j], s.radiance_[i * nw + j]);
   s.interval_cdf_.assign(nz, 0.0);
   for (std::size_t i = 0; i + 1 < nz; ++i) {
     double w = 0.0;
     for (std::size_t j = 0; j < nw; ++j)
       if (column_max[j] > 0.0)
         w += 0.5 * (s.radiance_[i * nw + j] + s.radiance_[(i + 1) * nw + j]) / column_max[j];
-    const double solid = std::cos(s.zenith_deg_[i] * kDegToRad) - std::cos(s.zenith_deg_[i + 1] * kDegToRad);
+    const double solid =
+        std::cos(s.zenith_deg_[i] * kDegToRad) - std::cos(s.zenith_deg_[i + 1] * kDegToRad);
     s.interval_cdf_[i + 1] = s.interval_cdf_[i] + w * solid;
   }
   if (!(s.interval_cdf_.back() > 0.0)) return Sky();  // all zero: a black sky
@@ -143,11 +145,13 @@ double Sky::table_radiance(double cos_zenith, double wavelength_um) const {
   const double zenith = std::acos(std::clamp(cos_zenith, -1.0, 1.0)) / kDegToRad;
   if (zenith > zenith_deg_.back()) return 0.0;
   const std::size_t i = interval_of(zenith_deg_, zenith);
-  const double fz = std::clamp((zenith - zenith_deg_[i]) / (zenith_deg_[i + 1] - zenith_deg_[i]), 0.0, 1.0);
+  const double fz =
+      std::clamp((zenith - zenith_deg_[i]) / (zenith_deg_[i + 1] - zenith_deg_[i]), 0.0, 1.0);
   const std::size_t nw = wavelengths_um_.size();
   auto at = [&](std::size_t row) {
     if (nw == 1) return radiance_[row];
-    const double lambda = std::clamp(wavelength_um, wavelengths_um_.front(), wavelengths_um_.back());
+    const double lambda =
+        std::clamp(wavelength_um, wavelengths_um_.front(), wavelengths_um_.back());
     const std::size_t j = interval_of(wavelengths_um_, lambda);
     const double fw = (lambda - wavelengths_um_[j]) / (wavelengths_um_[j + 1] - wavelengths_um_[j]);
     return (1 - fw) * radiance_[row * nw + j] + fw * radiance_[row * nw + j + 1];
@@ -160,7 +164,8 @@ double Sky::radiance(const Vec3& toward_sky, double wavelength_um) const {
     case Kind::kBlack:
       return 0.0;
     case Kind::kBlackbody:
-      return (below_horizon_ || toward_sky.z > 0.0) ? planck_radiance(wavelength_um, temperature_k_) : 0.0;
+      return (below_horizon_ || toward_sky.z > 0.0) ? planck_radiance(wavelength_um, temperature_k_)
+                                                    : 0.0;
     case Kind::kTable:
       return table_radiance(toward_sky.z, wavelength_um);
   }
@@ -182,9 +187,11 @@ double Sky::cosine_weighted_mean(const Vec3& normal, double wavelength_um) const
       const double fk = x - k;
       auto at = [&](int row) {
         if (nw == 1) return reflected_[row];
-        const double lambda = std::clamp(wavelength_um, wavelengths_um_.front(), wavelengths_um_.back());
+        const double lambda =
+            std::clamp(wavelength_um, wavelengths_um_.front(), wavelengths_um_.back());
         const std::size_t j = interval_of(wavelengths_um_, lambda);
-        const double fw = (lambda - wavelengths_um_[j]) / (wavelengths_um_[j + 1] - wavelengths_um_[j]);
+        const double fw =
+            (lambda - wavelengths_um_[j]) / (wavelengths_um_[j + 1] - wavelengths_um_[j]);
         return (1 - fw) * reflected_[row * nw + j] + fw * reflected_[row * nw + j + 1];
       };
       return (1 - fk) * at(k) + fk * at(k + 1);
@@ -205,7 +212,8 @@ Vec3 Sky::sample(double u1, double u2, double* pdf) const {
     const std::size_t i = interval_of(interval_cdf_, u1);
     const double width = interval_cdf_[i + 1] - interval_cdf_[i];
     const double f = width > 0.0 ? std::clamp((u1 - interval_cdf_[i]) / width, 0.0, 1.0) : 0.5;
-    const double c0 = std::cos(zenith_deg_[i] * kDegToRad), c1 = std::cos(zenith_deg_[i + 1] * kDegToRad);
+    const double c0 = std::cos(zenith_deg_[i] * kDegToRad),
+                 c1 = std::cos(zenith_deg_[i + 1] * kDegToRad);
     mu = c0 + f * (c1 - c0);
   } else {
     const double lowest = lowest_cos_zenith();
@@ -228,8 +236,9 @@ double Sky::pdf(const Vec3& toward_sky) const {
       const double zenith = std::acos(std::clamp(toward_sky.z, -1.0, 1.0)) / kDegToRad;
       if (zenith > zenith_deg_.back()) return 0.0;
       const std::size_t i = interval_of(zenith_deg_, zenith);
-      const double solid = 2.0 * std::numbers::pi *
-                           (std::cos(zenith_deg_[i] * kDegToRad) - std::cos(zenith_deg_[i + 1] * kDegToRad));
+      const double solid =
+          2.0 * std::numbers::pi *
+          (std::cos(zenith_deg_[i] * kDegToRad) - std::cos(zenith_deg_[i + 1] * kDegToRad));
       return (interval_cdf_[i + 1] - interval_cdf_[i]) / solid;
     }
   }

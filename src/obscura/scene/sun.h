@@ -6,8 +6,8 @@
 // of spectral irradiance, linear between its wavelengths and zero outside them.
 #include <algorithm>
 #include <cmath>
-#include <vector>
 #include <numbers>
+#include <vector>
 
 #include "obscura/core/planck.h"
 #include "obscura/core/vec3.h"
@@ -19,7 +19,7 @@ struct Sun {
   double azimuth_deg = 180.0;   // clockwise from +y (north) towards +x (east)
   double elevation_deg = 45.0;  // above the horizon (the z = 0 plane)
   double angular_diameter_deg = 0.533;
-  double temperature_k = 5778.0;         // blackbody shape of the spectrum
+  double temperature_k = 5778.0;          // blackbody shape of the spectrum
   double total_irradiance_w_m2 = 1361.0;  // ∫ E_λ dλ
   // User spectrum (empty: the blackbody above), strictly increasing wavelengths.
   std::vector<double> table_wavelengths_um;
@@ -51,13 +51,17 @@ struct Sun {
   double table_irradiance(double wavelength_um) const {
     const auto& w = table_wavelengths_um;
     if (!(wavelength_um >= w.front() && wavelength_um <= w.back())) return 0.0;
-    const std::size_t i = std::min<std::size_t>(
-        std::upper_bound(w.begin(), w.end(), wavelength_um) - w.begin(), w.size() - 1) - 1;
+    const std::size_t i =
+        std::min<std::size_t>(std::upper_bound(w.begin(), w.end(), wavelength_um) - w.begin(),
+                              w.size() - 1) -
+        1;
     const double f = (wavelength_um - w[i]) / (w[i + 1] - w[i]);
     return (1 - f) * table_irradiance_w_m2_um[i] + f * table_irradiance_w_m2_um[i + 1];
   }
   // Radiance of the disc, W m⁻² sr⁻¹ µm⁻¹.
-  double radiance(double wavelength_um) const { return irradiance(wavelength_um) / solid_angle_sr(); }
+  double radiance(double wavelength_um) const {
+    return irradiance(wavelength_um) / solid_angle_sr();
+  }
 };
 
 }  // namespace obscura

@@ -40,8 +40,16 @@ bool BoxSurface::intersect(const Ray& ray, double t_min, double t_max, SurfaceHi
   for (int a = 0; a < 3; ++a) {
     const double dlo = std::abs(p[a] - box_.lo[a]);
     const double dhi = std::abs(p[a] - box_.hi[a]);
-    if (dlo < best) { best = dlo; axis = a; sign = -1; }
-    if (dhi < best) { best = dhi; axis = a; sign = 1; }
+    if (dlo < best) {
+      best = dlo;
+      axis = a;
+      sign = -1;
+    }
+    if (dhi < best) {
+      best = dhi;
+      axis = a;
+      sign = 1;
+    }
   }
   Vec3 n(0, 0, 0);
   n[axis] = sign;

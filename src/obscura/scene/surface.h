@@ -18,7 +18,9 @@ struct SurfaceMaterial {
   SurfaceMaterial() = default;
   SurfaceMaterial(double temperature, double grey_emissivity,
                   std::vector<std::pair<double, double>> table = {})
-      : temperature_k(temperature), emissivity(grey_emissivity), emissivity_table(std::move(table)) {}
+      : temperature_k(temperature),
+        emissivity(grey_emissivity),
+        emissivity_table(std::move(table)) {}
 
   double temperature_k = 0.0;
   double emissivity = 1.0;  // in [0, 1]; used where emissivity_table is empty

@@ -1,17 +1,17 @@
 #include "obscura/validation/validation_cases.h"
 
+#include <fmt/format.h>
+
+#include <boost/math/special_functions/expint.hpp>
 #include <cmath>
 #include <fstream>
 #include <limits>
 #include <numbers>
 
-#include <boost/math/special_functions/expint.hpp>
-#include <fmt/format.h>
-
 #include "obscura/core/error.h"
 #include "obscura/core/parallel.h"
-#include "obscura/core/sampling.h"
 #include "obscura/core/planck.h"
+#include "obscura/core/sampling.h"
 #include "obscura/medium/gaussian_puff.h"
 #include "obscura/medium/grid_medium.h"
 #include "obscura/medium/homogeneous_medium.h"
@@ -73,8 +73,8 @@ MeanEstimate estimate(const ValidationOptions& o, double target_stderr, std::uin
 
 ValidationRow row(std::string case_name, std::string quantity, double reference, MeanEstimate e,
                   double tolerance) {
-  ValidationRow r{std::move(case_name), std::move(quantity), reference, e.mean, e.stderr_mean,
-                  tolerance, false, e.samples};
+  ValidationRow r{std::move(case_name), std::move(quantity), reference, e.mean,
+                  e.stderr_mean,        tolerance,           false,     e.samples};
   const double diff = std::abs(e.mean - reference);
   r.pass = diff <= std::max(3.0 * e.stderr_mean, tolerance * std::abs(reference)) &&
            e.stderr_mean <= tolerance * std::abs(reference);
@@ -89,8 +89,9 @@ class Solver {
   Solver(const Scene& scene, double wavelength_um, const ValidationOptions& o,
          const PathTracerSettings& pt = {})
       : scene_(scene), pt_(pt) {
-    nodes_.emplace_back(BandQuadrature(Band::flat("mono", wavelength_um - 1e-6, wavelength_um + 1e-6), 1, 0.0),
-                        scene.medium->wavelengths_um());
+    nodes_.emplace_back(
+        BandQuadrature(Band::flat("mono", wavelength_um - 1e-6, wavelength_um + 1e-6), 1, 0.0),
+        scene.medium->wavelengths_um());
     if (o.method == "photonmap") {
       PhotonMapSettings pm = o.photon_map;
       pm.camera_sees_sun = pt.camera_sees_sun;
@@ -125,7 +126,8 @@ void check(const std::string& field, double v, double lo, double hi, const char*
 
 void check_options(const ValidationOptions& o) {
   if (o.samples != 0 && o.samples < 2)
-    throw InputError("", "--samples", "must be at least 2 (or 0: until the standard error is small enough)");
+    throw InputError("", "--samples",
+                     "must be at least 2 (or 0: until the standard error is small enough)");
 }
 
 // Half the tolerance: the automatic sample count resolves a bias of `tolerance`.
@@ -148,9 +150,9 @@ std::vector<ValidationRow> validate_furnace(double tau, double g, const Validati
   check("--g", g, -0.999, 0.999, "g must lie in [-0.999, 0.999]");
   Scene scene;
   scene.sky = Sky::blackbody(300.0, true);
-  scene.medium = std::make_shared<HomogeneousMedium>(BBox3({0, 0, 0}, {1, 1, 1}), std::vector<double>{10.0},
-                                                     std::vector<double>{0.0}, std::vector<double>{tau},
-                                                     std::vector<double>{g}, 0.0);
+  scene.medium = std::make_shared<HomogeneousMedium>(
+      BBox3({0, 0, 0}, {1, 1, 1}), std::vector<double>{10.0}, std::vector<double>{0.0},
+      std::vector<double>{tau}, std::vector<double>{g}, 0.0);
   const Solver solver(scene, 10.0, o);
   const double tol = solver.tolerance(0.005);
   const double l0 = planck_radiance(10.0, 300.0);
@@ -173,8 +175,9 @@ std::vector<ValidationRow> validate_equilibrium(double albedo, double tau, doubl
   scene.surfaces.push_back(
       std::make_unique<GroundPlane>("ground", SurfaceMaterial{temperature_k, 0.5}, -1.0));
   scene.medium = std::make_shared<HomogeneousMedium>(
-      BBox3({0, 0, 0}, {1, 1, 1}), std::vector<double>{4.0}, std::vector<double>{tau * (1 - albedo)},
-      std::vector<double>{tau * albedo}, std::vector<double>{g}, temperature_k);
+      BBox3({0, 0, 0}, {1, 1, 1}), std::vector<double>{4.0},
+      std::vector<double>{tau * (1 - albedo)}, std::vector<double>{tau * albedo},
+      std::vector<double>{g}, temperature_k);
   const Solver solver(scene, 4.0, o);
   const double tol = solver.tolerance(0.005);
   const double b = planck_radiance(4.0, temperature_k);
@@ -206,9 +209,11 @@ std::vector<ValidationRow> validate_emitting_slab(double tau, double temperature
               reference, e, tol)};
 }
 
-std::vector<ValidationRow> validate_single_scatter(double tau, double g, const ValidationOptions& o) {
+std::vector<ValidationRow> validate_single_scatter(double tau, double g,
+                                                   const ValidationOptions& o) {
   check_options(o);
-  check("--tau", tau, 1e-6, 0.01, "a single-scattering slab must be optically thin: tau in [1e-6, 0.01]");
+  check("--tau", tau, 1e-6, 0.01,
+        "a single-scattering slab must be optically thin: tau in [1e-6, 0.01]");
   check("--g", g, -0.999, 0.999, "g must lie in [-0.999, 0.999]");
   Scene scene;
   scene.sun.enabled = true;
@@ -233,7 +238,8 @@ std::vector<ValidationRow> validate_single_scatter(double tau, double g, const V
   const MeanEstimate e = estimate(o, target(tol, reference), 0, [&](Rng& rng) {
     return solver(Ray{{0, 0, -1}, view}, rng) / e_sun;
   });
-  return {row(fmt::format("single-scatter tau={} g={}", tau, g), "radiance / E_sun", reference, e, tol)};
+  return {row(fmt::format("single-scatter tau={} g={}", tau, g), "radiance / E_sun", reference, e,
+              tol)};
 }
 
 std::vector<ValidationRow> validate_puff_transmittance(const ValidationOptions& o) {
@@ -257,19 +263,19 @@ std::vector<ValidationRow> validate_puff_transmittance(const ValidationOptions& 
     medium.bounds().intersect(rays[r], t0, t1);
     const double tau = 0.5 * gaussian_puff_line_integral(spec, rays[r], t0, t1);
     const double reference = std::exp(-tau);
-    const MeanEstimate e = estimate(o, target(0.005, reference), static_cast<std::uint64_t>(r) << 40,
-                                    [&](Rng& rng) {
-                                      MediumPoint scratch;
-                                      return estimate_transmittance(medium, rays[r], 1e9, lambda,
-                                                                    rng, scratch);
-                                    });
-    rows.push_back(row(fmt::format("puff-transmittance ray {}", r + 1), "transmittance", reference,
-                       e, 0.005));
+    const MeanEstimate e =
+        estimate(o, target(0.005, reference), static_cast<std::uint64_t>(r) << 40, [&](Rng& rng) {
+          MediumPoint scratch;
+          return estimate_transmittance(medium, rays[r], 1e9, lambda, rng, scratch);
+        });
+    rows.push_back(
+        row(fmt::format("puff-transmittance ray {}", r + 1), "transmittance", reference, e, 0.005));
   }
   return rows;
 }
 
-std::optional<SlabReference> find_slab_reference(const std::string& csv_path, const SlabSpec& slab) {
+std::optional<SlabReference> find_slab_reference(const std::string& csv_path,
+                                                 const SlabSpec& slab) {
   std::ifstream in(csv_path);
   if (!in) throw InputError(csv_path, "", "cannot open the slab reference table");
   const std::string incidence =
@@ -280,8 +286,9 @@ std::optional<SlabReference> find_slab_reference(const std::string& csv_path, co
   std::getline(in, line);
   if (!line.empty() && line.back() == '\r') line.pop_back();
   if (line.rfind("albedo,tau,g,incidence,R_total,T_total,T_unscattered,source", 0) != 0)
-    throw InputError(csv_path, "line 1",
-                     "expected the header albedo,tau,g,incidence,R_total,T_total,T_unscattered,source");
+    throw InputError(
+        csv_path, "line 1",
+        "expected the header albedo,tau,g,incidence,R_total,T_total,T_unscattered,source");
   std::optional<SlabReference> published;
   for (int number = 2; std::getline(in, line); ++number) {
     if (!line.empty() && line.back() == '\r') line.pop_back();  // CRLF tables
@@ -291,7 +298,8 @@ std::optional<SlabReference> find_slab_reference(const std::string& csv_path, co
     for (int k = 0; k < 7; ++k) {
       const std::size_t comma = line.find(',', start);
       if (comma == std::string::npos)
-        throw InputError(csv_path, fmt::format("line {}", number), "expected 8 comma-separated fields");
+        throw InputError(csv_path, fmt::format("line {}", number),
+                         "expected 8 comma-separated fields");
       f.push_back(line.substr(start, comma - start));
       start = comma + 1;
     }
@@ -305,13 +313,20 @@ std::optional<SlabReference> find_slab_reference(const std::string& csv_path, co
         v[k] = std::stod(f[columns[k]], &used);
         if (used != f[columns[k]].size()) throw std::invalid_argument("trailing");
       } catch (const std::exception&) {
-        if (k == 2 && f[2] == "any") { v[k] = slab.g; continue; }
-        throw InputError(csv_path, fmt::format("line {}", number),
-                         fmt::format("field {} ('{}') is not a number", columns[k] + 1, f[columns[k]]));
+        if (k == 2 && f[2] == "any") {
+          v[k] = slab.g;
+          continue;
+        }
+        throw InputError(
+            csv_path, fmt::format("line {}", number),
+            fmt::format("field {} ('{}') is not a number", columns[k] + 1, f[columns[k]]));
       }
     }
-    auto same = [](double a, double b) { return std::abs(a - b) <= 1e-9 * std::max(1.0, std::abs(b)); };
-    if (!(same(v[0], slab.albedo) && same(v[1], slab.tau) && same(v[2], slab.g) && f[3] == incidence))
+    auto same = [](double a, double b) {
+      return std::abs(a - b) <= 1e-9 * std::max(1.0, std::abs(b));
+    };
+    if (!(same(v[0], slab.albedo) && same(v[1], slab.tau) && same(v[2], slab.g) &&
+          f[3] == incidence))
       continue;
     const SlabReference r{v[3], v[4], v[5], source};
     // Converged DISORT rows first; otherwise the first row that matches.
@@ -321,13 +336,15 @@ std::optional<SlabReference> find_slab_reference(const std::string& csv_path, co
   return published;
 }
 
-std::vector<ValidationRow> validate_slab(const SlabSpec& slab, const std::optional<SlabReference>& ref,
-                                        const ValidationOptions& o) {
+std::vector<ValidationRow> validate_slab(const SlabSpec& slab,
+                                         const std::optional<SlabReference>& ref,
+                                         const ValidationOptions& o) {
   check_options(o);
   check("--albedo", slab.albedo, 0.0, 1.0, "albedo must lie in [0, 1]");
   check("--tau", slab.tau, 1e-6, 100.0, "optical thickness must lie in [1e-6, 100]");
   check("--g", slab.g, -0.999, 0.999, "g must lie in [-0.999, 0.999]");
-  check("--mu0", slab.mu0, 0.01, 1.0, "the cosine of the beam's zenith angle must lie in [0.01, 1]");
+  check("--mu0", slab.mu0, 0.01, 1.0,
+        "the cosine of the beam's zenith angle must lie in [0.01, 1]");
   check("--half-width", slab.half_width_m, 1e-3, 1e9, "the half-width must lie in [0.001, 1e9] m");
   if (slab.incidence == SlabIncidence::kDiffuse && slab.mu0 != 1.0)
     throw InputError("", "--mu0", "applies to collimated incidence only");
@@ -339,8 +356,8 @@ std::vector<ValidationRow> validate_slab(const SlabSpec& slab, const std::option
   Scene scene;
   scene.medium = std::make_shared<HomogeneousMedium>(
       BBox3({-w, -w, 0}, {w, w, kThickness}), std::vector<double>{kWavelength},
-      std::vector<double>{slab.tau * (1 - slab.albedo)}, std::vector<double>{slab.tau * slab.albedo},
-      std::vector<double>{slab.g}, 0.0);
+      std::vector<double>{slab.tau * (1 - slab.albedo)},
+      std::vector<double>{slab.tau * slab.albedo}, std::vector<double>{slab.g}, 0.0);
   PathTracerSettings pt;
   // The unscattered beam is scored by ratio tracking (T_direct); camera rays
   // must not see the sun's disc as well.
@@ -376,8 +393,8 @@ std::vector<ValidationRow> validate_slab(const SlabSpec& slab, const std::option
   auto direct = [&](Rng& rng) {
     MediumPoint scratch;
     const Ray ray = diffuse ? up_ray(rng, -1.0) : Ray{{0, 0, kThickness + 1.0}, beam};
-    return estimate_transmittance(*scene.medium, ray, std::numeric_limits<double>::infinity(), lambda,
-                                  rng, scratch);
+    return estimate_transmittance(*scene.medium, ray, std::numeric_limits<double>::infinity(),
+                                  lambda, rng, scratch);
   };
   auto reflected = [&](Rng& rng) {
     Ray ray = up_ray(rng, kThickness + 1.0);
@@ -396,8 +413,9 @@ std::vector<ValidationRow> validate_slab(const SlabSpec& slab, const std::option
                  bool judged) {
     const MeanEstimate e = judged ? estimate(o, target(tol, reference), stream, sample)
                                   : estimate(o, 1e-5, stream, sample, 0.5 * tol);
-    ValidationRow r = judged ? row("", quantity, reference, e, tol)
-                             : ValidationRow{"", quantity, 0.0, e.mean, e.stderr_mean, tol, true, e.samples};
+    ValidationRow r =
+        judged ? row("", quantity, reference, e, tol)
+               : ValidationRow{"", quantity, 0.0, e.mean, e.stderr_mean, tol, true, e.samples};
     r.judged = judged;
     return r;
   };
@@ -406,12 +424,13 @@ std::vector<ValidationRow> validate_slab(const SlabSpec& slab, const std::option
       diffuse ? 2.0 * boost::math::expint(3, slab.tau) : std::exp(-slab.tau / slab.mu0);
   std::vector<ValidationRow> rows;
   rows.push_back(run("R", 0, reflected, ref ? ref->r : 0.0, ref.has_value() && ref->r > 0.0));
-  rows.push_back(run("T", 1ull << 40, transmitted, ref ? ref->t : 0.0, ref.has_value() && ref->t > 0.0));
+  rows.push_back(
+      run("T", 1ull << 40, transmitted, ref ? ref->t : 0.0, ref.has_value() && ref->t > 0.0));
   rows.push_back(run("T_direct", 2ull << 40, direct, direct_exact, direct_exact > 1e-12));
-  const std::string name =
-      fmt::format("slab albedo={} tau={} g={} {}", slab.albedo, slab.tau, slab.g,
-                  diffuse ? std::string("diffuse")
-                          : (slab.mu0 == 1.0 ? std::string("normal") : fmt::format("mu0={}", slab.mu0)));
+  const std::string name = fmt::format(
+      "slab albedo={} tau={} g={} {}", slab.albedo, slab.tau, slab.g,
+      diffuse ? std::string("diffuse")
+              : (slab.mu0 == 1.0 ? std::string("normal") : fmt::format("mu0={}", slab.mu0)));
   for (auto& r : rows) r.case_name = name;
   return rows;
 }

@@ -25,7 +25,9 @@ struct ValidationRow {
   bool pass = false;
   long long samples = 0;
   bool judged = true;  // false: no reference for these parameters, obtained only
-  double relative_error() const { return reference != 0 ? (obtained - reference) / reference : obtained; }
+  double relative_error() const {
+    return reference != 0 ? (obtained - reference) / reference : obtained;
+  }
 };
 
 struct ValidationOptions {
@@ -53,7 +55,8 @@ std::vector<ValidationRow> validate_emitting_slab(double tau, double temperature
                                                   const ValidationOptions& o);
 // Single scattering of sunlight (elevation 50°) in an optically thin
 // conservative slab seen from below: closed form (docs/physics.md).
-std::vector<ValidationRow> validate_single_scatter(double tau, double g, const ValidationOptions& o);
+std::vector<ValidationRow> validate_single_scatter(double tau, double g,
+                                                   const ValidationOptions& o);
 // Transmittance by ratio tracking through a voxelised Gaussian puff (128³) on
 // three rays, against e^{−τ} with τ from the erf closed form.
 std::vector<ValidationRow> validate_puff_transmittance(const ValidationOptions& o);
@@ -68,8 +71,8 @@ enum class SlabIncidence { kCollimated, kDiffuse };
 struct SlabSpec {
   double albedo = 0.9, tau = 1.0, g = 0.5;
   SlabIncidence incidence = SlabIncidence::kCollimated;
-  double mu0 = 1.0;             // collimated only; 1: normal incidence
-  double half_width_m = 1e6;    // the slab is 1 m thick and ±half_width wide
+  double mu0 = 1.0;           // collimated only; 1: normal incidence
+  double half_width_m = 1e6;  // the slab is 1 m thick and ±half_width wide
 };
 
 struct SlabReference {
@@ -86,7 +89,8 @@ std::optional<SlabReference> find_slab_reference(const std::string& csv_path, co
 // Rows R, T and T_direct. R and T are judged against `reference` (within 1 %
 // or 3 standard errors) when given and non-zero, else reported unjudged;
 // T_direct is judged against its closed form, e^{−τ/μ0} or 2 E3(τ).
-std::vector<ValidationRow> validate_slab(const SlabSpec& slab, const std::optional<SlabReference>& reference,
+std::vector<ValidationRow> validate_slab(const SlabSpec& slab,
+                                         const std::optional<SlabReference>& reference,
                                          const ValidationOptions& o);
 
 }  // namespace obscura

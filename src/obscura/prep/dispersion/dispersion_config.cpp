@@ -1,8 +1,8 @@
 #include "obscura/prep/dispersion/dispersion_config.h"
 
-#include <cmath>
-
 #include <fmt/format.h>
+
+#include <cmath>
 
 namespace obscura {
 

@@ -1,12 +1,12 @@
 #include "obscura/prep/dispersion/dispersion_grid.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <climits>
 #include <cmath>
 #include <cstdint>
 #include <numbers>
-
-#include <fmt/format.h>
 
 #include "obscura/core/bbox.h"
 #include "obscura/core/error.h"
