@@ -24,7 +24,7 @@
 
 #include "bench_timer.h"
 #include "obscura/core/rng.h"
-#include "obscura/photon/photon_map.h"
+#include "obscura/render/photon_map/photon_map.h"
 
 using namespace obscura;
 using bench::seconds_since;

@@ -14,7 +14,7 @@
 #include <fstream>
 #include <string>
 
-#include "obscura/io/line_plot.h"
+#include "obscura/report/line_plot.h"
 #include "obscura/render/renderer.h"
 #include "obscura/scene/example_scenes.h"
 

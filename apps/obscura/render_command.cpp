@@ -17,10 +17,10 @@
 #include "obscura/core/error.h"
 #include "obscura/core/parallel.h"
 #include "obscura/io/atomic_file.h"
-#include "obscura/io/contact_sheet.h"
+#include "obscura/report/contact_sheet.h"
 #include "obscura/io/provenance.h"
-#include "obscura/io/render_output.h"
-#include "obscura/io/screening_output.h"
+#include "obscura/report/render_output.h"
+#include "obscura/report/screening_output.h"
 #include "obscura/render/renderer.h"
 #include "obscura/scene/scene.h"
 

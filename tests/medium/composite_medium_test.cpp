@@ -9,7 +9,7 @@
 #include "obscura/core/planck.h"
 #include "obscura/medium/grid_medium.h"
 #include "obscura/medium/homogeneous_medium.h"
-#include "obscura/render/emission_absorption.h"
+#include "obscura/render/emission_absorption/emission_absorption.h"
 
 namespace obscura {
 namespace {

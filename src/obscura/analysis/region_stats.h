@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "obscura/render/renderer.h"
+#include "obscura/film/sensor_image.h"
 #include "obscura/scene/scene.h"
 
 namespace obscura {

@@ -25,7 +25,7 @@
 
 #include "obscura/analysis/target_mask.h"
 #include "obscura/core/band.h"
-#include "obscura/render/renderer.h"
+#include "obscura/film/sensor_image.h"
 #include "obscura/scene/metrics_settings.h"
 #include "obscura/scene/scene.h"
 

@@ -18,7 +18,7 @@
 #include <filesystem>
 #include <string>
 
-#include "obscura/prep/concentration_series.h"
+#include "obscura/medium/concentration_series.h"
 
 namespace obscura {
 

@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <filesystem>
 
-#include "obscura/scene/triangle_mesh.h"
+#include "obscura/core/triangle_mesh.h"
 
 namespace obscura {
 

@@ -20,7 +20,7 @@
 #include <utility>
 #include <vector>
 
-#include "obscura/prep/concentration_series.h"
+#include "obscura/medium/concentration_series.h"
 
 namespace obscura {
 

@@ -12,7 +12,7 @@
 
 #include "obscura/medium/species_optics.h"
 #include "obscura/medium/voxel_grid.h"
-#include "obscura/prep/concentration_series.h"
+#include "obscura/medium/concentration_series.h"
 
 namespace obscura {
 

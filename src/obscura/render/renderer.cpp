@@ -8,10 +8,10 @@
 #include "obscura/core/error.h"
 #include "obscura/core/parallel.h"
 #include "obscura/core/rng.h"
-#include "obscura/render/emission_absorption.h"
-#include "obscura/render/photon_map_integrator.h"
+#include "obscura/render/emission_absorption/emission_absorption.h"
+#include "obscura/render/photon_map/photon_map_integrator.h"
 #include "obscura/render/spectral_nodes.h"
-#include "obscura/render/volume_path_tracer.h"
+#include "obscura/render/path_tracer/volume_path_tracer.h"
 
 namespace obscura {
 namespace {

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "obscura/scene/triangle_mesh.h"
+#include "obscura/core/triangle_mesh.h"
 
 namespace obscura {
 

@@ -30,7 +30,7 @@
 #include <vector>
 
 #include "obscura/scene/surface.h"
-#include "obscura/scene/triangle_mesh.h"
+#include "obscura/core/triangle_mesh.h"
 
 struct RTCSceneTy;  // Embree's scene handle (embree3/rtcore_scene.h)
 

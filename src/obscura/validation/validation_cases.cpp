@@ -16,8 +16,8 @@
 #include "obscura/medium/grid_medium.h"
 #include "obscura/medium/homogeneous_medium.h"
 #include "obscura/medium/tracking.h"
-#include "obscura/render/photon_map_integrator.h"
-#include "obscura/render/volume_path_tracer.h"
+#include "obscura/render/photon_map/photon_map_integrator.h"
+#include "obscura/render/path_tracer/volume_path_tracer.h"
 
 namespace obscura {
 namespace {

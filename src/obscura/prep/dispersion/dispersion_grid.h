@@ -17,7 +17,7 @@
 // puff at the default 4σ coverage).
 #include <vector>
 
-#include "obscura/prep/concentration_series.h"
+#include "obscura/medium/concentration_series.h"
 #include "obscura/prep/dispersion/dispersion_model.h"
 
 namespace obscura {

@@ -1,0 +1,249 @@
+#include "obscura/render/photon_map/photon_tracing.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "obscura/core/parallel.h"
+#include "obscura/core/sampling.h"
+#include "obscura/medium/phase_function.h"
+#include "obscura/medium/tracking.h"
+#include "obscura/render/direct_lighting.h"
+
+namespace obscura {
+namespace {
+
+constexpr double kFourPi = 4.0 * std::numbers::pi;
+constexpr long long kChunk = 2048;         // photons per parallel work item
+constexpr int kEnvironmentPilot = 2048;    // samples estimating the environment's power
+constexpr int kMaxLatticeCells = 1 << 18;  // emission lattice (64³)
+
+// Volume emission 4π σa B(T) (W m⁻³ µm⁻¹) tabled at the centres of a lattice
+// over the medium's box, to draw emission points from.
+class EmissionLattice {
+ public:
+  EmissionLattice(const Medium& medium, const SpectralNode& node) : box_(medium.bounds()) {
+    const Vec3 e = box_.extent();
+    const double volume = std::max(e.x * e.y * e.z, 1e-300);
+    const double h = std::cbrt(volume / kMaxLatticeCells);
+    n_[0] = std::clamp(static_cast<int>(std::ceil(e.x / h)), 1, 512);
+    n_[1] = std::clamp(static_cast<int>(std::ceil(e.y / h)), 1, 512);
+    n_[2] = std::clamp(static_cast<int>(std::ceil(e.z / h)), 1, 512);
+    cell_ = Vec3(e.x / n_[0], e.y / n_[1], e.z / n_[2]);
+    const std::size_t count = static_cast<std::size_t>(n_[0]) * n_[1] * n_[2];
+    std::vector<double> f(count);
+    const SpectralLerp lambda = node.lerp();
+    MediumPoint point;
+    double sum = 0;
+    for (std::size_t c = 0; c < count; ++c) {
+      medium.coefficients_at(center(c), point);
+      f[c] = kFourPi * lambda(point.sigma_a.data()) * node.planck(point.temperature_k);
+      sum += f[c];
+    }
+    if (!(sum > 0)) return;
+    // A defensive 1 % of the mean in every cell: the continuous field may be
+    // non-zero in a cell whose centre value is zero.
+    const double floor = 0.01 * sum / count;
+    cdf_.resize(count + 1, 0.0);
+    for (std::size_t c = 0; c < count; ++c) cdf_[c + 1] = cdf_[c] + f[c] + floor;
+    estimated_power_ = sum * cell_.x * cell_.y * cell_.z;
+  }
+
+  // Spectral power ≈ Σ f(centre) × cell volume, W µm⁻¹ (0: nothing emits).
+  double estimated_power() const { return estimated_power_; }
+
+  // A point with its density (per m³).
+  Vec3 sample(Rng& rng, double* pdf) const {
+    const double u = rng.uniform() * cdf_.back();
+    const std::size_t c =
+        std::min<std::size_t>(std::upper_bound(cdf_.begin(), cdf_.end(), u) - cdf_.begin(),
+                              cdf_.size() - 1) -
+        1;
+    *pdf = (cdf_[c + 1] - cdf_[c]) / cdf_.back() / (cell_.x * cell_.y * cell_.z);
+    const Vec3 corner = center(c) - cell_ * 0.5;
+    return corner + Vec3(rng.uniform() * cell_.x, rng.uniform() * cell_.y, rng.uniform() * cell_.z);
+  }
+
+ private:
+  Vec3 center(std::size_t c) const {
+    const int i = static_cast<int>(c % n_[0]), j = static_cast<int>((c / n_[0]) % n_[1]),
+              k = static_cast<int>(c / (static_cast<std::size_t>(n_[0]) * n_[1]));
+    return box_.lo + Vec3((i + 0.5) * cell_.x, (j + 0.5) * cell_.y, (k + 0.5) * cell_.z);
+  }
+  BBox3 box_;
+  int n_[3] = {1, 1, 1};
+  Vec3 cell_;
+  std::vector<double> cdf_;
+  double estimated_power_ = 0;
+};
+
+// A point uniform on the disc of radius r centred at c across direction d.
+Vec3 point_on_disc(const Vec3& c, const Vec3& d, double r, Rng& rng) {
+  const double rho = r * std::sqrt(rng.uniform()), phi = 2.0 * std::numbers::pi * rng.uniform();
+  return c + local_to_world(d, Vec3(rho * std::cos(phi), rho * std::sin(phi), 0.0));
+}
+
+enum Source { kSun = 0, kEnvironment = 1, kEmission = 2 };
+
+struct Launch {
+  Ray ray;
+  double power = 0;        // W µm⁻¹
+  bool scattered = false;  // counts as scattered already (emission photons)
+};
+
+}  // namespace
+
+BoundingSphere photon_bounding_sphere(const Scene& scene) {
+  if (!scene.medium) return {};
+  const BBox3 b = scene.medium->bounds();
+  return {b.center(), 0.5 * length(b.extent()) * (1.0 + 1e-9)};
+}
+
+TracedPhotons trace_photons(const Scene& scene, const SpectralNode& node, std::uint64_t stream_base,
+                            const PhotonTracingSettings& settings) {
+  TracedPhotons out;
+  if (!scene.medium || settings.photons <= 0) return out;
+  const Medium& medium = *scene.medium;
+  const BoundingSphere sphere = photon_bounding_sphere(scene);
+  const double disc_area = std::numbers::pi * sphere.radius_m * sphere.radius_m;
+  const SpectralLerp lambda = node.lerp();
+
+  // Environment photon: direction uniform over the sphere, start behind the
+  // disc on the first surface or at the sky.
+  auto launch_environment = [&](Rng& rng, MediumPoint& scratch) {
+    const Vec3 d = sample_uniform_sphere(rng.uniform(), rng.uniform());
+    const Vec3 p = point_on_disc(sphere.center, d, sphere.radius_m, rng);
+    Launch l;
+    SurfaceHit hit;
+    const Ray back{p, -d};
+    double radiance = 0;
+    if (intersect_surfaces(scene.surfaces, back, 0.0, std::numeric_limits<double>::infinity(),
+                           hit)) {
+      const Vec3 s = back.at(hit.t);
+      radiance = surface_radiance(scene, hit, s, node, rng, scratch);
+      l.ray = Ray{s + hit.normal * 1e-9, d};
+    } else {
+      radiance = scene.sky.radiance(-d, node.wavelength_um);
+      l.ray = Ray{p - d * (1.01 * sphere.radius_m), d};
+    }
+    l.power = radiance * kFourPi * disc_area;  // ÷ N_env later
+    return l;
+  };
+
+  // Share the photons out by power.
+  PhotonSourcePowers& est = out.estimated;
+  if (scene.sun.enabled) est.sun_w_um = scene.sun.irradiance(node.wavelength_um) * disc_area;
+  {
+    double sum = 0;
+    MediumPoint scratch;
+    for (int i = 0; i < kEnvironmentPilot; ++i) {
+      Rng rng(settings.seed, stream_base + (1ull << 38) + static_cast<std::uint64_t>(i));
+      sum += launch_environment(rng, scratch).power;
+    }
+    est.environment_w_um = sum / kEnvironmentPilot;
+  }
+  const EmissionLattice lattice(medium, node);
+  est.emission_w_um = lattice.estimated_power();
+  const double total = est.total();
+  if (!(total > 0)) return out;
+  const long long n = settings.photons;
+  const long long n_sun = std::llround(n * est.sun_w_um / total);
+  const long long n_env = std::llround(n * est.environment_w_um / total);
+  const long long n_em = std::max(0LL, n - n_sun - n_env);
+  out.launched_count[kSun] = n_sun;
+  out.launched_count[kEnvironment] = n_env;
+  out.launched_count[kEmission] = est.emission_w_um > 0 ? n_em : 0;
+
+  const std::size_t chunks = static_cast<std::size_t>((n + kChunk - 1) / kChunk);
+  std::vector<std::vector<Photon>> stored(chunks);
+  std::vector<std::array<double, 3>> launched(chunks, {0, 0, 0});
+  parallel_for(chunks, settings.threads, [&](std::size_t c) {
+    MediumPoint scratch;
+    const long long begin = static_cast<long long>(c) * kChunk, end = std::min(n, begin + kChunk);
+    for (long long i = begin; i < end; ++i) {
+      Rng rng(settings.seed, stream_base + static_cast<std::uint64_t>(i));
+      Launch l;
+      Source source;
+      if (i < n_sun) {
+        source = kSun;
+        const Vec3 d = -sample_sun_direction(scene.sun, rng);
+        const Vec3 p = point_on_disc(sphere.center, d, sphere.radius_m, rng);
+        l.power = scene.sun.irradiance(node.wavelength_um) * disc_area / n_sun;
+        // From outside the sphere towards the disc. Surfaces on the way are
+        // met by the tracing below (an unscattered photon stops there): the
+        // line must not be dropped because the disc point p itself is shaded
+        // (e.g. below the ground), since the part of the line before the
+        // shading surface can still cross the cloud.
+        l.ray = Ray{p - d * (1.01 * sphere.radius_m), d};
+      } else if (i < n_sun + n_env) {
+        source = kEnvironment;
+        l = launch_environment(rng, scratch);
+        l.power /= n_env;
+      } else {
+        if (out.launched_count[kEmission] == 0) break;
+        source = kEmission;
+        double pdf = 0;
+        const Vec3 x = lattice.sample(rng, &pdf);
+        medium.coefficients_at(x, scratch);
+        const double f =
+            kFourPi * lambda(scratch.sigma_a.data()) * node.planck(scratch.temperature_k);
+        l.power = f / (pdf * n_em);
+        l.ray = Ray{x, sample_uniform_sphere(rng.uniform(), rng.uniform())};
+        l.scattered = true;
+      }
+      launched[c][source] += l.power;
+      if (!(l.power > 0)) continue;
+
+      // Trace: store at scattering events, roulette by albedo and reflectance.
+      Ray ray = l.ray;
+      bool scattered = l.scattered;
+      for (int bounce = 0; bounce < settings.max_scatterings; ++bounce) {
+        SurfaceHit hit;
+        const bool on_surface = intersect_surfaces(scene.surfaces, ray, 1e-9,
+                                                   std::numeric_limits<double>::infinity(), hit);
+        const auto t = sample_free_flight(
+            medium, ray, on_surface ? hit.t : std::numeric_limits<double>::infinity(), lambda, rng,
+            scratch);
+        if (t) {
+          const double sigma_a = lambda(scratch.sigma_a.data()),
+                       sigma_s = lambda(scratch.sigma_s.data());
+          if (rng.uniform() * (sigma_a + sigma_s) >= sigma_s) break;  // absorbed
+          const Vec3 x = ray.at(*t);
+          if (scattered || settings.store_first_scatter)
+            stored[c].push_back(
+                Photon{{static_cast<float>(x.x), static_cast<float>(x.y), static_cast<float>(x.z)},
+                       {static_cast<float>(ray.direction.x), static_cast<float>(ray.direction.y),
+                        static_cast<float>(ray.direction.z)},
+                       static_cast<float>(l.power)});
+          scattered = true;
+          const HenyeyGreenstein phase(std::clamp(lambda(scratch.g.data()), -0.999999, 0.999999));
+          ray = Ray{x, phase.sample(ray.direction, rng.uniform(), rng.uniform(), nullptr)};
+        } else if (on_surface) {
+          if (!scattered) break;  // its reflection is in the surface's own radiance
+          const double reflectance =
+              scene.surfaces[hit.surface]->material().reflectance_at(node.wavelength_um);
+          if (rng.uniform() >= reflectance) break;
+          ray = Ray{
+              ray.at(hit.t) + hit.normal * 1e-9,
+              local_to_world(hit.normal, sample_cosine_hemisphere(rng.uniform(), rng.uniform()))};
+        } else {
+          break;  // escaped
+        }
+      }
+    }
+  });
+  std::size_t total_stored = 0;
+  for (const auto& s : stored) total_stored += s.size();
+  out.photons.reserve(total_stored);
+  for (std::size_t c = 0; c < chunks; ++c) {
+    out.photons.insert(out.photons.end(), stored[c].begin(), stored[c].end());
+    out.launched.sun_w_um += launched[c][kSun];
+    out.launched.environment_w_um += launched[c][kEnvironment];
+    out.launched.emission_w_um += launched[c][kEmission];
+  }
+  return out;
+}
+
+}  // namespace obscura

@@ -1,0 +1,76 @@
+#pragma once
+// Pass 1 of volume photon mapping (Jensen & Christensen 1998; the source
+// paper's method): photons are emitted from every light source in proportion
+// to its power, traced through the cloud by delta tracking, continued at each
+// real collision with probability Λ = σs/σt (Russian roulette with the
+// scattering albedo, so a photon's power never changes) in a direction drawn
+// from the HG phase function, and stored at scattering events. One set of
+// photons per spectral node (the medium's coefficients depend on wavelength).
+//
+// Sources (docs/physics.md, "Volume photon mapping"), all for a node at λ:
+//  * the sun: directions uniform over its disc, start points uniform on a disc
+//    of the medium's bounding-sphere radius R across the beam; each photon
+//    carries E_λ π R² / N_sun;
+//  * the environment (sky and surfaces): a direction d uniform over the
+//    sphere and a point p on the disc of radius R across d; the photon leaves
+//    the first surface behind p (with that surface's radiance,
+//    render/direct_lighting.h) or the sky, carrying L π R² 4π / N_env;
+//  * volume emission 4π σa B(T): points drawn from a lattice of cells over the
+//    medium's box by the emission at each cell's centre (plus a defensive 1 %
+//    of the mean, so every cell can be drawn), uniform within the cell,
+//    directions uniform; each photon carries f(x)/(pdf(x) N_em), unbiased for
+//    the continuous field.
+//
+// Which collisions are stored: with `store_first_scatter` false (the hybrid
+// form), sun and environment photons are stored only after they have
+// scattered once — the ray marcher computes their single scattering with
+// shadow rays — and emission photons from their first scattering on. With it
+// true (the paper's pure form) every scattering event is stored.
+//
+// At a surface, photons that have scattered (and all emission photons)
+// reflect with probability 1 − ε into a cosine-distributed direction; sun and
+// environment photons that have not scattered stop there, because their
+// reflection is already part of the surface radiance the environment source
+// uses.
+#include <cstdint>
+#include <vector>
+
+#include "obscura/render/photon_map/photon.h"
+#include "obscura/render/spectral_nodes.h"
+#include "obscura/scene/scene.h"
+
+namespace obscura {
+
+struct PhotonTracingSettings {
+  long long photons = 200000;  // launched per spectral node, all sources together
+  bool store_first_scatter = false;
+  std::uint64_t seed = 1;
+  int threads = 0;
+  int max_scatterings = 10000;  // safety net; roulette ends photons long before
+};
+
+// Spectral powers (W µm⁻¹) per source kind.
+struct PhotonSourcePowers {
+  double sun_w_um = 0, environment_w_um = 0, emission_w_um = 0;
+  double total() const { return sun_w_um + environment_w_um + emission_w_um; }
+};
+
+struct TracedPhotons {
+  std::vector<Photon> photons;              // stored at scattering events
+  PhotonSourcePowers launched;              // Σ of the launched photons' powers per source
+  PhotonSourcePowers estimated;             // the powers used to share the photons out
+  long long launched_count[3] = {0, 0, 0};  // sun, environment, emission
+};
+
+TracedPhotons trace_photons(const Scene& scene, const SpectralNode& node, std::uint64_t stream_base,
+                            const PhotonTracingSettings& settings);
+
+// The bounding sphere photons enter through: centre and radius (m) of the
+// medium's box; zero radius when the scene has no medium.
+struct BoundingSphere {
+  Vec3 center;
+  double radius_m = 0;
+};
+BoundingSphere photon_bounding_sphere(const Scene& scene);
+
+}  // namespace obscura
