@@ -59,9 +59,8 @@ int main(int argc, char** argv) {
   sensor.bands = {Band::flat("lwir", 8.0, 12.0)};
   scene.sensors.push_back(sensor);
   scene.settings.spectral_nodes_per_band = nodes;
-  RenderOptions options;
-  options.threads = threads;
-  const SensorImage img = render_sensor(scene, sensor, options);
+  scene.settings.threads = threads;
+  const SensorImage img = render_sensor(scene, sensor);
   const int cores = resolve_thread_count(threads);
   const double s = img.stats.seconds;
   std::printf("emission-absorption benchmark\n");

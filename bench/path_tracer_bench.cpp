@@ -29,10 +29,9 @@ struct Run {
 
 Run render(Scene& scene, int spp, int threads) {
   scene.settings.samples_per_pixel = spp;
-  RenderOptions options;
-  options.threads = threads;
+  scene.settings.threads = threads;
   const auto t0 = std::chrono::steady_clock::now();
-  const SensorImage img = render_sensor(scene, scene.sensors[0], options);
+  const SensorImage img = render_sensor(scene, scene.sensors[0]);
   Run r;
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   double sum = 0;
@@ -94,7 +93,7 @@ int main(int argc, char** argv) {
   sensor.camera = PinholeCamera({0, -60, 4}, {0, 0, 2.5}, {0, 0, 1}, 24.0, width, height);
   sensor.bands = {Band::preset("mwir"), Band::preset("lwir")};
   scene.sensors.push_back(sensor);
-  scene.settings.method = "path-tracer";
+  scene.settings.method = RenderMethod::kPathTracer;
   scene.settings.spectral_nodes_per_band = 8;
 
   const int cores = resolve_thread_count(threads);

@@ -30,11 +30,10 @@ struct Result {
 };
 
 Result render(Scene& scene, int threads, std::uint64_t seed) {
-  RenderOptions o;
-  o.threads = threads;
-  o.seed = seed;
+  scene.settings.threads = threads;
+  scene.settings.seed = seed;
   const auto t0 = std::chrono::steady_clock::now();
-  const SensorImage img = render_sensor(scene, scene.sensors[0], o);
+  const SensorImage img = render_sensor(scene, scene.sensors[0]);
   Result r;
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   r.radiance = img.bands[0].radiance;
@@ -103,7 +102,7 @@ int main(int argc, char** argv) {
   for (const StudyScene s : {StudyScene::kVisible, StudyScene::kLwir}) {
     const std::string name = s == StudyScene::kVisible ? "visible" : "lwir";
     if (which != "both" && which != name) continue;
-    Scene pt = make_study_scene(s, width, height, "path-tracer");
+    Scene pt = make_study_scene(s, width, height, RenderMethod::kPathTracer);
     pt.settings.samples_per_pixel = reference_spp;
     const Result ref = render(pt, threads, 1000);
     std::printf("%s, %dx%d px: path-traced reference %d spp in %.1f s, its relative noise %.4f\n",
@@ -138,7 +137,7 @@ int main(int argc, char** argv) {
       pt_series.y.push_back(relative_rmse(r.radiance, ref.radiance));
     }
     plot.series.push_back(pt_series);
-    Scene pm = make_study_scene(s, width, height, "photonmap");
+    Scene pm = make_study_scene(s, width, height, RenderMethod::kPhotonMap);
     for (int spp : {1, 4}) {
       PlotSeries pm_series{
           name + ": photon map, k 50, 2e4–5e5 photons, " + std::to_string(spp) + " spp",

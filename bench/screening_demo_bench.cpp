@@ -10,6 +10,7 @@
 // Run from the repository root (default paths are relative to it).
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -21,7 +22,7 @@
 
 #include "bench_timer.h"
 #include "obscura/prep/prepare.h"
-#include "obscura/render/renderer.h"
+#include "obscura/sequence/sequence_runner.h"
 #include "obscura/scene/scene.h"
 
 using namespace obscura;
@@ -78,38 +79,36 @@ int main(int argc, char** argv) {
     const double prepare_s = seconds_since(p0);
 
     Scene scene = load_scene(dir / "scene.json");
-    RenderOptions options;
-    options.threads = threads;
-    options.seed = scene.settings.seed;
+    scene.settings.threads = threads;
+    std::vector<double> times;
+    for (double t = t0; t <= t1 + 1e-9 * step; t += step) times.push_back(t);
+    const int frames = static_cast<int>(times.size());
+    // The frames as `obscura render --time` renders them (sequence/sequence_runner.h).
+    const SequenceResult result = render_sequence(scene, times);
     std::map<std::string, Totals> per_band;
     std::vector<std::string> order;
-    int frames = 0;
-    for (double t = t0; t <= t1 + 1e-9 * step; t += step, ++frames) {
-      const auto s0 = Clock::now();
-      stage_scene(scene, t);
-      const double staging = seconds_since(s0);
-      for (const Sensor& sensor : scene.sensors) {
-        const SensorImage image = render_sensor(scene, sensor, options);
-        std::string label = sensor.name + " (";
-        for (std::size_t b = 0; b < sensor.bands.size(); ++b)
-          label += (b ? "+" : "") + sensor.bands[b].name();
-        label += ")";
-        if (!per_band.count(label)) order.push_back(label);
-        Totals& tot = per_band[label];
-        // Staging is shared by the frame's sensors: each is charged its share.
-        tot.staging += staging / scene.sensors.size();
-        tot.tracing += image.stats.photon_trace_seconds;
-        tot.build += image.stats.photon_build_seconds;
-        tot.marching += image.stats.seconds - image.stats.photon_seconds;
-        ++tot.frames;
-      }
+    for (const SensorFrameStats& frame : result.sensor_frames) {
+      const Sensor& sensor = *std::find_if(scene.sensors.begin(), scene.sensors.end(),
+                                           [&](const Sensor& s) { return s.name == frame.sensor; });
+      std::string label = sensor.name + " (";
+      for (std::size_t b = 0; b < sensor.bands.size(); ++b)
+        label += (b ? "+" : "") + sensor.bands[b].name();
+      label += ")";
+      if (!per_band.count(label)) order.push_back(label);
+      Totals& tot = per_band[label];
+      // Staging is shared by the frame's sensors: each is charged its share.
+      tot.staging += frame.staging_seconds / scene.sensors.size();
+      tot.tracing += frame.stats.photon_trace_seconds;
+      tot.build += frame.stats.photon_build_seconds;
+      tot.marching += frame.stats.seconds - frame.stats.photon_seconds;
+      ++tot.frames;
     }
     const int width = scene.sensors.front().camera.width(),
               height = scene.sensors.front().camera.height();
     std::printf(
         "scene %s: %d frames at t = %g…%g s, %d×%d px, method %s, %lld photons per node, %d "
         "threads\n",
-        scene_path.c_str(), frames, t0, t1, width, height, scene.settings.method.c_str(),
+        scene_path.c_str(), frames, t0, t1, width, height, std::string(render_method_name(scene.settings.method)).c_str(),
         scene.settings.photon_map.photons_per_node, threads);
     std::printf(
         "preparation (once): %.2f s (concentrations %.2f, optics %.2f, keyframes %.2f), %zu "

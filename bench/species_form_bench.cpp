@@ -80,7 +80,7 @@ FormFigures run_form(const nlohmann::json& config, const std::string& form,
   f.render_s = 1e30;
   for (int r = 0; r < 3; ++r) {
     t0 = Clock::now();
-    f.image = render_sensor(scene, scene.sensors[0], RenderOptions{});
+    f.image = render_sensor(scene, scene.sensors[0]);
     f.render_s = std::min(f.render_s, seconds_since(t0));
   }
   return f;

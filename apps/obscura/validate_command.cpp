@@ -27,12 +27,10 @@ Command add_validate_command(CLI::App& app) {
     double mu0 = 1.0;
     std::optional<double> half_width;
     std::string method = "path-tracer";
-    PhotonMapSettings photon_map;
+    RenderSettings settings;
     std::string form = "hybrid";
     std::string reference;
     std::optional<int> samples;
-    std::uint64_t seed = 1;
-    int threads = 0;
     bool json = false;
   };
   auto o = std::make_shared<Options>();
@@ -56,16 +54,21 @@ Command add_validate_command(CLI::App& app) {
   cmd->add_option("--half-width", o->half_width,
                   "Slab half-width, m (the slab is 1 m thick; default 1e6, photonmap 20; "
                   "docs/validation.md measures the edge loss)");
-  cmd->add_option("--method", o->method, "Solver: path-tracer, or photonmap (judged at 2 %)")
-      ->check(CLI::IsMember({"path-tracer", "photonmap"}))
+  std::vector<std::string> methods;
+  for (RenderMethod m : kRenderMethods) methods.emplace_back(render_method_name(m));
+  cmd->add_option("--method", o->method,
+                  "Solver: " + render_method_names() +
+                      " (photonmap judged at 2 %; emission-absorption only on cases without "
+                      "scattering)")
+      ->check(CLI::IsMember(methods))
       ->capture_default_str();
-  cmd->add_option("--photons", o->photon_map.photons_per_node, "photonmap: photons launched")
+  PhotonMapSettings& pm = o->settings.photon_map;
+  cmd->add_option("--photons", pm.photons_per_node, "photonmap: photons launched")
       ->capture_default_str();
-  cmd->add_option("--k", o->photon_map.k, "photonmap: nearest photons per estimate")
+  cmd->add_option("--k", pm.k, "photonmap: nearest photons per estimate")->capture_default_str();
+  cmd->add_option("--max-radius", pm.max_radius_m, "photonmap: search radius cap, m")
       ->capture_default_str();
-  cmd->add_option("--max-radius", o->photon_map.max_radius_m, "photonmap: search radius cap, m")
-      ->capture_default_str();
-  cmd->add_option("--step", o->photon_map.step_m, "photonmap: longest marching segment, m")
+  cmd->add_option("--step", pm.step_m, "photonmap: longest marching segment, m")
       ->capture_default_str();
   cmd->add_option("--form", o->form,
                   "photonmap: hybrid (shadow rays for single scattering) or pure")
@@ -78,8 +81,9 @@ Command add_validate_command(CLI::App& app) {
   cmd->add_option("--samples", o->samples,
                   "Monte Carlo samples per quantity (default: batches until the standard error is "
                   "below half the case's tolerance)");
-  cmd->add_option("--seed", o->seed, "Random seed")->capture_default_str();
-  cmd->add_option("--threads", o->threads, "Threads (0: all cores); results do not depend on it")
+  cmd->add_option("--seed", o->settings.seed, "Random seed")->capture_default_str();
+  cmd->add_option("--threads", o->settings.threads,
+                  "Threads (0: all cores); results do not depend on it")
       ->capture_default_str();
   cmd->add_flag("--json", o->json, "Print a JSON array of rows instead of a table");
   return {
@@ -87,20 +91,10 @@ Command add_validate_command(CLI::App& app) {
         const double g = o->g.value_or(0.5);
         ValidationOptions options;
         options.samples = o->samples.value_or(0);
-        options.seed = o->seed;
-        options.threads = o->threads;
-        options.method = o->method;
-        options.photon_map = o->photon_map;
-        options.photon_map.pure = o->form == "pure";
-        const bool photonmap = o->method == "photonmap";
-        if (photonmap) {
-          if (o->photon_map.photons_per_node < 1)
-            throw InputError("", "--photons", "must be at least 1");
-          if (o->photon_map.k < 1) throw InputError("", "--k", "must be at least 1");
-          if (!(o->photon_map.max_radius_m > 0))
-            throw InputError("", "--max-radius", "must be > 0 m");
-          if (!(o->photon_map.step_m > 0)) throw InputError("", "--step", "must be > 0 m");
-        }
+        options.settings = o->settings;
+        options.settings.method = *parse_render_method(o->method);  // CLI::IsMember checked it
+        options.settings.photon_map.pure = o->form == "pure";
+        const bool photonmap = options.settings.method == RenderMethod::kPhotonMap;
         std::vector<ValidationRow> rows;
         auto add = [&](std::vector<ValidationRow> r) {
           rows.insert(rows.end(), r.begin(), r.end());

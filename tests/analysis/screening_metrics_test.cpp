@@ -150,17 +150,16 @@ Scene target_scene() {
   return scene;
 }
 
-std::vector<ScreeningMetrics> render_metrics(const Scene& scene) {
-  RenderOptions options;
-  options.threads = 2;
-  const SensorImage image = render_sensor(scene, scene.sensors[0], options);
+std::vector<ScreeningMetrics> render_metrics(Scene& scene) {
+  scene.settings.threads = 2;
+  const SensorImage image = render_sensor(scene, scene.sensors[0]);
   const TargetMask mask =
       compute_target_mask(scene, scene.sensors[0], scene.metrics.background_margin_px);
   return screening_metrics(image, mask, scene.metrics, scene.settings.spectral_nodes_per_band, 1.5);
 }
 
 TEST(ScreeningMetrics, NoCloudTargetFullyVisibleAndDeltaTFromPlanck) {
-  const Scene scene = target_scene();
+  Scene scene = target_scene();
   const auto rows = render_metrics(scene);
   ASSERT_EQ(rows.size(), 2u);
   for (const ScreeningMetrics& m : rows) {

@@ -164,7 +164,8 @@ TEST_F(PrepareTest, SpeciesFormReadsAndRendersExactlyAsTheSpectralForm) {
     Scene scene = parse_scene(scene_doc, dir_ / "scene.json");
     for (const double t : {1.0, 7.0}) {
       stage_scene(scene, t);
-      images.push_back(render_sensor(scene, scene.sensors[0], RenderOptions{.threads = 2}));
+      scene.settings.threads = 2;
+      images.push_back(render_sensor(scene, scene.sensors[0]));
     }
   }
   ASSERT_EQ(images.size(), 4u);

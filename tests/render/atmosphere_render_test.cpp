@@ -121,7 +121,7 @@ namespace {
 // band, under a sky at its own temperature, looks like a blackbody to every
 // method (ε B + (1 − ε) B at each wavelength).
 TEST(AtmosphereRender, SpectralEmissivityInEquilibriumLooksBlackToEveryMethod) {
-  for (const char* method : {"emission-absorption", "path-tracer", "photonmap"}) {
+  for (const RenderMethod method : kRenderMethods) {
     Scene scene = ground_scene(300.0);
     scene.atmosphere = Atmosphere{};
     scene.sky = Sky::blackbody(300.0, true);
@@ -131,7 +131,7 @@ TEST(AtmosphereRender, SpectralEmissivityInEquilibriumLooksBlackToEveryMethod) {
         0.0));
     // A thin scattering box (the photon map needs a medium to work on); the
     // emission–absorption method treats scattering as loss, so it sees none.
-    if (std::string(method) != "emission-absorption")
+    if (method != RenderMethod::kEmissionAbsorption)
       scene.medium = std::make_shared<HomogeneousMedium>(
           BBox3({-5, -5, 0}, {5, 5, 1}), std::vector<double>{4.0}, std::vector<double>{0.0},
           std::vector<double>{0.01}, std::vector<double>{0.0}, 300.0);
@@ -141,10 +141,10 @@ TEST(AtmosphereRender, SpectralEmissivityInEquilibriumLooksBlackToEveryMethod) {
     const SensorImage img = render_sensor(scene, scene.sensors[0], {});
     // The photon map's in-scattering estimate from 2000 photons is noisy at
     // the 0.2 % level: 0.3 K (0.4 % of LWIR radiance) for it, 0.05 K for the others.
-    const double tolerance_k = std::string(method) == "photonmap" ? 0.3 : 0.05;
+    const double tolerance_k = method == RenderMethod::kPhotonMap ? 0.3 : 0.05;
     for (const BandImage& b : img.bands)
       for (float t : b.apparent_temperature)
-        EXPECT_NEAR(t, 300.0, tolerance_k) << method << " " << b.band.name();
+        EXPECT_NEAR(t, 300.0, tolerance_k) << render_method_name(method) << " " << b.band.name();
   }
 }
 

@@ -56,12 +56,11 @@ TEST_F(RendererMesh, TriangleBoxRendersLikeTheAnalyticBox) {
   write_box_obj(dir_ / "box.obj", lo, hi);
   const TriangleMesh mesh = read_obj_mesh(dir_ / "box.obj");
   ASSERT_EQ(mesh.triangle_count(), 12u);
-  const Scene analytic = scene_with(std::make_unique<BoxSurface>("box", m, BBox3(lo, hi)));
-  const Scene triangles = scene_with(std::make_unique<MeshSurface>("box", m, mesh));
-  RenderOptions options;
-  options.threads = 2;
-  const SensorImage a = render_sensor(analytic, analytic.sensors[0], options);
-  const SensorImage b = render_sensor(triangles, triangles.sensors[0], options);
+  Scene analytic = scene_with(std::make_unique<BoxSurface>("box", m, BBox3(lo, hi)));
+  Scene triangles = scene_with(std::make_unique<MeshSurface>("box", m, mesh));
+  analytic.settings.threads = triangles.settings.threads = 2;
+  const SensorImage a = render_sensor(analytic, analytic.sensors[0]);
+  const SensorImage b = render_sensor(triangles, triangles.sensors[0]);
   ASSERT_EQ(a.bands.size(), b.bands.size());
   int box_pixels = 0;
   for (std::size_t k = 0; k < a.bands.size(); ++k)

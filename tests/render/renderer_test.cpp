@@ -1,4 +1,5 @@
 #include "obscura/render/renderer.h"
+#include "support/render_helpers.h"
 
 #include <gtest/gtest.h>
 
@@ -31,13 +32,9 @@ Scene test_scene(int spp) {
 
 // The same image, bit for bit, whatever the thread count (per-pixel RNG streams).
 TEST(Renderer, BitIdenticalWithOneAndTwoThreads) {
-  const Scene scene = test_scene(4);
-  RenderOptions one, two;
-  one.threads = 1;
-  two.threads = 2;
-  one.seed = two.seed = 99;
-  const SensorImage a = render_sensor(scene, scene.sensors[0], one);
-  const SensorImage b = render_sensor(scene, scene.sensors[0], two);
+  Scene scene = test_scene(4);
+  const SensorImage a = testing::render_first_sensor(scene, 1, 99);
+  const SensorImage b = testing::render_first_sensor(scene, 2, 99);
   ASSERT_EQ(a.bands.size(), b.bands.size());
   for (std::size_t i = 0; i < a.bands.size(); ++i) {
     const auto& x = a.bands[i];
@@ -50,9 +47,7 @@ TEST(Renderer, BitIdenticalWithOneAndTwoThreads) {
                              x.apparent_temperature.size() * sizeof(float)));
   }
   // And the seed matters when pixels are jittered.
-  RenderOptions other = one;
-  other.seed = 100;
-  const SensorImage c = render_sensor(scene, scene.sensors[0], other);
+  const SensorImage c = testing::render_first_sensor(scene, 1, 100);
   EXPECT_NE(0, std::memcmp(a.bands[0].radiance.data(), c.bands[0].radiance.data(),
                            a.bands[0].radiance.size() * sizeof(float)));
 }
@@ -119,7 +114,7 @@ TEST(Renderer, PathTracerAgreesWithExactImageWithoutScattering) {
   // tracer's standard error with 64.
   scene.settings.samples_per_pixel = 1024;
   const SensorImage exact = render_sensor(scene, scene.sensors[0], {});
-  scene.settings.method = "path-tracer";
+  scene.settings.method = RenderMethod::kPathTracer;
   scene.settings.samples_per_pixel = 64;
   const SensorImage mc = render_sensor(scene, scene.sensors[0], {});
   for (std::size_t b = 0; b < mc.bands.size(); ++b) {
@@ -155,7 +150,7 @@ TEST(Renderer, PathTracerFurnaceImage) {
   grid->set_placement(p);
   scene.medium = std::make_shared<GridMedium>(grid);
   scene.sky = Sky::blackbody(300.0, true);
-  scene.settings.method = "path-tracer";
+  scene.settings.method = RenderMethod::kPathTracer;
   scene.settings.samples_per_pixel = 200;
   scene.settings.spectral_nodes_per_band = 2;
   const SensorImage img = render_sensor(scene, sensor, {});
@@ -169,12 +164,9 @@ TEST(Renderer, PathTracerFurnaceImage) {
 
 TEST(Renderer, PathTracerIsBitIdenticalWithOneAndTwoThreads) {
   Scene scene = test_scene(3);
-  scene.settings.method = "path-tracer";
-  RenderOptions one, two;
-  one.threads = 1;
-  two.threads = 2;
-  const SensorImage a = render_sensor(scene, scene.sensors[0], one);
-  const SensorImage b = render_sensor(scene, scene.sensors[0], two);
+  scene.settings.method = RenderMethod::kPathTracer;
+  const SensorImage a = testing::render_first_sensor(scene, 1);
+  const SensorImage b = testing::render_first_sensor(scene, 2);
   for (std::size_t i = 0; i < a.bands.size(); ++i) {
     EXPECT_EQ(0, std::memcmp(a.bands[i].radiance.data(), b.bands[i].radiance.data(),
                              a.bands[i].radiance.size() * sizeof(float)));
@@ -188,14 +180,11 @@ TEST(Renderer, PathTracerIsBitIdenticalWithOneAndTwoThreads) {
 // result is still independent of the thread count.
 TEST(Renderer, PathTracerMeetsATargetRelativeStandardError) {
   Scene scene = test_scene(4);
-  scene.settings.method = "path-tracer";
+  scene.settings.method = RenderMethod::kPathTracer;
   scene.settings.target_relative_stderr = 0.02;
   scene.settings.max_samples_per_pixel = 2048;
-  RenderOptions one, two;
-  one.threads = 1;
-  two.threads = 2;
-  const SensorImage a = render_sensor(scene, scene.sensors[0], one);
-  const SensorImage b = render_sensor(scene, scene.sensors[0], two);
+  const SensorImage a = testing::render_first_sensor(scene, 1);
+  const SensorImage b = testing::render_first_sensor(scene, 2);
   const std::size_t pixels = a.bands[0].radiance.size();
   EXPECT_GT(a.stats.rays, 4 * pixels);  // some pixels needed more than one round
   EXPECT_LE(a.stats.rays, 2048 * pixels);

@@ -155,7 +155,11 @@ TEST(SlabValidation, ANarrowSlabLosesLightThroughItsEdges) {
 
 TEST(SlabValidation, ResultsDoNotDependOnTheThreadCount) {
   const SlabSpec slab{0.9, 1.0, 0.5, SlabIncidence::kDiffuse, 1.0};
-  ValidationOptions one{20000, 7, 1}, two{20000, 7, 2};
+  ValidationOptions one, two;
+  one.samples = two.samples = 20000;
+  one.settings.seed = two.settings.seed = 7;
+  one.settings.threads = 1;
+  two.settings.threads = 2;
   const auto a = validate_slab(slab, std::nullopt, one), b = validate_slab(slab, std::nullopt, two);
   for (std::size_t i = 0; i < a.size(); ++i) {
     EXPECT_EQ(a[i].obtained, b[i].obtained) << a[i].quantity;

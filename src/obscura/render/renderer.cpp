@@ -1,20 +1,20 @@
 #include "obscura/render/renderer.h"
 
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <cmath>
 #include <limits>
 
+#include "obscura/core/check.h"
 #include "obscura/core/error.h"
 #include "obscura/core/parallel.h"
 #include "obscura/core/rng.h"
-#include "obscura/render/emission_absorption/emission_absorption.h"
-#include "obscura/render/photon_map/photon_map_integrator.h"
-#include "obscura/render/spectral_nodes.h"
-#include "obscura/render/path_tracer/volume_path_tracer.h"
 
 namespace obscura {
 namespace {
+
+using NodeArray = std::array<double, kMaxSpectralNodes>;
 
 // Standard error of the mean of n independent samples with sum s and sum of squares s2.
 double standard_error(double s, double s2, int n) {
@@ -23,186 +23,199 @@ double standard_error(double s, double s2, int n) {
   return std::sqrt(std::max(0.0, s2 / n - mean * mean) / (n - 1));
 }
 
-}  // namespace
+// The atmosphere between the sensor and the scene, per band
+// (scene/atmosphere.h): its extinction coefficient (1/m) and its own band
+// radiance, (1 − τ) of which joins every ray.
+struct AirPath {
+  std::vector<double> extinction_per_m, band_radiance;
 
-SensorImage render_sensor(const Scene& scene, const Sensor& sensor, const RenderOptions& options) {
-  const auto start = std::chrono::steady_clock::now();
-  const RenderSettings& settings = scene.settings;
-  const bool photon_mapping = settings.method == "photonmap";
-  // Both Monte Carlo methods report standard errors and the exact line-of-sight transmittance.
-  const bool path_tracer = settings.method == "path-tracer" || photon_mapping;
-  if (!path_tracer && settings.method != "emission-absorption")
-    throw Error("render: unknown method '" + settings.method + "'");
-  const PinholeCamera& cam = sensor.camera;
-  const int width = cam.width(), height = cam.height();
-  const std::size_t pixels = static_cast<std::size_t>(width) * height;
-  const std::vector<double> grey = {1.0};
-  const std::vector<double>& medium_wl = scene.medium ? scene.medium->wavelengths_um() : grey;
+  AirPath(const Scene& scene, const Sensor& sensor, const std::vector<SpectralNodes>& bands)
+      : extinction_per_m(sensor.bands.size(), 0.0), band_radiance(sensor.bands.size(), 0.0) {
+    if (!scene.atmosphere.enabled) return;
+    for (std::size_t b = 0; b < sensor.bands.size(); ++b) {
+      extinction_per_m[b] = scene.atmosphere.extinction_for(sensor.bands[b]);
+      for (const SpectralNode& nd : bands[b].nodes())
+        band_radiance[b] += nd.weight_um * nd.planck(scene.atmosphere.temperature_k);
+    }
+  }
+};
 
+// How far a camera ray runs through the air before it meets the scene: to
+// the surface, else through the clouds' box (0 when it meets neither).
+double air_path_m(const Scene& scene, const CameraRay& camera) {
+  if (camera.on_surface) return camera.hit.t;
+  double t0 = 0.0, t1 = std::numeric_limits<double>::infinity();
+  if (scene.atmosphere.enabled && scene.medium && scene.medium->bounds().intersect(camera.ray, t0, t1))
+    return t1;
+  return 0.0;
+}
+
+// Running sums of one pixel's samples, per band.
+struct PixelSums {
+  std::vector<double> l, l2, t;
+  explicit PixelSums(std::size_t bands) : l(bands), l2(bands), t(bands) {}
+  void clear() {
+    std::fill(l.begin(), l.end(), 0.0);
+    std::fill(l2.begin(), l2.end(), 0.0);
+    std::fill(t.begin(), t.end(), 0.0);
+  }
+};
+
+// Everything one sensor's render shares between its rows.
+struct SensorRender {
+  const Scene& scene;
+  const Sensor& sensor;
+  const Integrator& integrator;
+  const std::vector<SpectralNodes>& bands;
+  int sensor_index;
+  AirPath air;
+  bool monte_carlo;
+
+  // One camera sample at image position (px, py): band radiance and
+  // response-weighted transmittance added to `sums`.
+  void sample(double px, double py, Rng& rng, RayWorkspace& ws, PixelSums& sums) const {
+    const CameraRay camera = find_camera_ray_hit(scene, sensor.camera.generate_ray(px, py));
+    integrator.begin_ray(camera, ws);
+    const double air_m = air_path_m(scene, camera);
+    NodeArray radiance, transmittance;
+    for (std::size_t b = 0; b < bands.size(); ++b) {
+      const SpectralNodes& nodes = bands[b];
+      integrator.band_radiance(camera, sensor_index, static_cast<int>(b), rng, ws,
+                               radiance.data(), transmittance.data());
+      double band_l = 0, band_t = 0;
+      for (std::size_t i = 0; i < nodes.size(); ++i) {
+        band_l += nodes.nodes()[i].weight_um * radiance[i];
+        band_t += nodes.nodes()[i].weight_um * transmittance[i];
+      }
+      if (scene.atmosphere.enabled) {
+        const double tau_air = std::exp(-air.extinction_per_m[b] * air_m);
+        band_l = tau_air * band_l + (1.0 - tau_air) * air.band_radiance[b];
+      }
+      sums.l[b] += band_l;
+      sums.l2[b] += band_l * band_l;
+      sums.t[b] += band_t / nodes.quadrature().response_integral();
+    }
+  }
+
+  // All samples of pixel (x, y): rounds of samples_per_pixel stratified
+  // samples, more than one round only for a Monte Carlo method with a target
+  // relative standard error. Returns the samples taken.
+  int pixel(int x, int y, Rng& rng, RayWorkspace& ws, PixelSums& sums) const {
+    const RenderSettings& settings = scene.settings;
+    const int spp = settings.samples_per_pixel;
+    const int max_spp = std::max(settings.max_samples_per_pixel, spp);
+    // Stratify the pixel into a near-square grid of spp cells.
+    const int strata_x = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(spp))));
+    const int strata_y = (spp + strata_x - 1) / strata_x;
+    const double target = settings.target_relative_stderr;
+    int n = 0;
+    for (bool more = true; more;) {
+      for (int s = 0; s < spp; ++s, ++n) {
+        double px = x + 0.5, py = y + 0.5;
+        if (spp > 1) {
+          px = x + (s % strata_x + rng.uniform()) / strata_x;
+          py = y + (s / strata_x + rng.uniform()) / strata_y;
+        }
+        sample(px, py, rng, ws, sums);
+      }
+      more = false;
+      if (monte_carlo && target > 0.0 && n + spp <= max_spp)
+        for (std::size_t b = 0; b < sums.l.size(); ++b)
+          more = more || standard_error(sums.l[b], sums.l2[b], n) > target * std::abs(sums.l[b] / n);
+    }
+    return n;
+  }
+};
+
+SensorImage empty_image(const Sensor& sensor, bool monte_carlo) {
   SensorImage image;
   image.sensor = sensor.name;
-  image.width = width;
-  image.height = height;
-  std::vector<SpectralNodes> band_nodes;
-  for (const Band& band : sensor.bands) {
-    band_nodes.emplace_back(BandQuadrature(band, settings.spectral_nodes_per_band, 0.0), medium_wl);
-    if (band_nodes.back().size() > static_cast<std::size_t>(kMaxSpectralNodes))
-      throw InputError("", "band " + band.name(), "too many spectral nodes for one band");
+  image.width = sensor.camera.width();
+  image.height = sensor.camera.height();
+  const std::size_t pixels = static_cast<std::size_t>(image.width) * image.height;
+  for (const Band& band : sensor.bands)
     image.bands.push_back({band, std::vector<float>(pixels), std::vector<float>(pixels),
                            std::vector<float>(pixels),
-                           path_tracer ? std::vector<float>(pixels) : std::vector<float>()});
-  }
-
-  // The atmosphere per band (scene/atmosphere.h): its extinction coefficient
-  // (1/m) and its own band radiance, (1 − τ) of which joins every ray.
-  std::vector<double> air_extinction_per_m(sensor.bands.size(), 0.0),
-      air_band_radiance(sensor.bands.size(), 0.0);
-  if (scene.atmosphere.enabled)
-    for (std::size_t b = 0; b < sensor.bands.size(); ++b) {
-      air_extinction_per_m[b] = scene.atmosphere.extinction_for(sensor.bands[b]);
-      for (const SpectralNode& nd : band_nodes[b].nodes())
-        air_band_radiance[b] += nd.weight_um * nd.planck(scene.atmosphere.temperature_k);
-    }
-
-  // Pass 1 of photon mapping: photon maps for every node of every band.
-  std::unique_ptr<PhotonMapIntegrator> photon_map;
-  if (photon_mapping) {
-    const auto t0 = std::chrono::steady_clock::now();
-    photon_map = std::make_unique<PhotonMapIntegrator>(scene, band_nodes, settings.photon_map,
-                                                       options.seed, options.threads);
-    image.stats.photons = photon_map->photon_count();
-    image.stats.photon_bytes = photon_map->memory_bytes();
-    image.stats.photon_seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    image.stats.photon_trace_seconds = photon_map->tracing_seconds();
-    image.stats.photon_build_seconds = photon_map->build_seconds();
-  }
+                           monte_carlo ? std::vector<float>(pixels) : std::vector<float>()});
   image.samples_per_pixel.assign(pixels, 0);
-  std::atomic<std::uint64_t> segments{0}, evals{0}, samples_taken{0};
-  const double target = settings.target_relative_stderr;
-  const int max_spp = std::max(settings.max_samples_per_pixel, settings.samples_per_pixel);
-  std::atomic<int> rows_done{0};
-  const int spp = settings.samples_per_pixel;
-  // Stratify the pixel into a near-square grid of spp cells.
-  const int strata_x = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(spp))));
+  return image;
+}
 
-  parallel_for(static_cast<std::size_t>(height), options.threads, [&](std::size_t row) {
+}  // namespace
+
+namespace {
+
+// `sensor` through `integrator`, which knows its bands' nodes as
+// spectra[sensor_index] (= `bands`).
+SensorImage render(const Scene& scene, const Sensor& sensor, int sensor_index,
+                   const Integrator& integrator, const std::vector<SpectralNodes>& bands,
+                   const RenderOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  const bool monte_carlo = method_is_monte_carlo(integrator.method());
+  const SensorRender job{scene, sensor, integrator, bands, sensor_index,
+                            AirPath(scene, sensor, bands), monte_carlo};
+  SensorImage image = empty_image(sensor, monte_carlo);
+  const int width = image.width, height = image.height;
+  std::atomic<std::uint64_t> segments{0}, evals{0}, samples_taken{0};
+  std::atomic<int> rows_done{0};
+
+  parallel_for(static_cast<std::size_t>(height), scene.settings.threads, [&](std::size_t row) {
     const int y = static_cast<int>(row);
-    std::array<double, kMaxSpectralNodes> radiance, transmittance;
-    EmissionAbsorptionStats stats;
+    const std::unique_ptr<RayWorkspace> ws = integrator.make_workspace();
+    PixelSums sums(bands.size());
     for (int x = 0; x < width; ++x) {
       const std::size_t pixel = static_cast<std::size_t>(y) * width + x;
-      Rng rng(options.seed, pixel);
-      std::vector<double> sum_l(image.bands.size(), 0.0), sum_t(image.bands.size(), 0.0),
-          sum_l2(image.bands.size(), 0.0);
-      int n = 0;  // samples taken in this pixel
-      // Rounds of spp stratified samples; more than one only for a path tracer
-      // with a target relative standard error.
-      for (bool more = true; more;) {
-        for (int s = 0; s < spp; ++s, ++n) {
-          double px = x + 0.5, py = y + 0.5;
-          if (spp > 1) {
-            const int sx = s % strata_x, sy = s / strata_x;
-            const int strata_y = (spp + strata_x - 1) / strata_x;
-            px = x + (sx + rng.uniform()) / strata_x;
-            py = y + (sy + rng.uniform()) / strata_y;
-          }
-          const Ray ray = cam.generate_ray(px, py);
-          SurfaceHit hit;
-          const bool hit_surface = intersect_surfaces(scene.surfaces, ray, 0.0,
-                                                      std::numeric_limits<double>::infinity(), hit);
-          const double t_max = hit_surface ? hit.t : std::numeric_limits<double>::infinity();
-          // The path tracer reports the exact line-of-sight transmittance: τ per
-          // medium sample, once per ray for all bands.
-          const std::vector<double> line_of_sight_tau =
-              path_tracer && scene.medium
-                  ? scene.medium->optical_depth(ray, 0.0, t_max)
-                  : std::vector<double>(path_tracer ? medium_wl.size() : 0, 0.0);
-          // How far the ray runs through the air before it meets the scene
-          // (scene/atmosphere.h): to the surface, else through the clouds' box.
-          double air_path_m = hit_surface ? hit.t : 0.0;
-          if (scene.atmosphere.enabled && !hit_surface && scene.medium) {
-            double t0 = 0.0, t1 = std::numeric_limits<double>::infinity();
-            if (scene.medium->bounds().intersect(ray, t0, t1)) air_path_m = t1;
-          }
-          for (std::size_t b = 0; b < image.bands.size(); ++b) {
-            const SpectralNodes& nodes = band_nodes[b];
-            const int n = static_cast<int>(nodes.size());
-            double band_l = 0, band_t = 0;
-            if (path_tracer) {
-              if (photon_mapping)
-                photon_map->radiance(ray, static_cast<int>(b), rng, radiance.data());
-              // One path per spectral node (or one photon-map estimate).
-              for (int i = 0; i < n; ++i) {
-                const SpectralNode& nd = nodes.nodes()[i];
-                band_l +=
-                    nd.weight_um * (photon_mapping ? radiance[i] : trace_path(scene, ray, nd, rng));
-                band_t += nd.weight_um * std::exp(-nd.lerp()(line_of_sight_tau.data()));
-              }
-            } else {
-              for (int i = 0; i < n; ++i) {
-                radiance[i] = 0.0;
-                transmittance[i] = 1.0;
-              }
-              integrate_emission_absorption(scene.medium.get(), ray, t_max, nodes,
-                                            settings.relative_tolerance, radiance.data(),
-                                            transmittance.data(), &stats);
-              for (int i = 0; i < n; ++i) {
-                const SpectralNode& nd = nodes.nodes()[i];
-                double background = scene.sky.radiance(ray.direction, nd.wavelength_um);
-                if (hit_surface) {
-                  const SurfaceMaterial& m = scene.surfaces[hit.surface]->material();
-                  // Opaque Lambertian surface: emits ε B(T) and reflects
-                  // (1 − ε) of the sky it faces (clouds' light on surfaces is the
-                  // path tracer's job).
-                  const double emissivity = m.emissivity_at(nd.wavelength_um);
-                  background = emissivity * nd.planck(m.temperature_k) +
-                               (1.0 - emissivity) *
-                                   scene.sky.cosine_weighted_mean(hit.normal, nd.wavelength_um);
-                }
-                band_l += nd.weight_um * (radiance[i] + transmittance[i] * background);
-                band_t += nd.weight_um * transmittance[i];
-              }
-            }
-            if (scene.atmosphere.enabled) {
-              const double tau_air = std::exp(-air_extinction_per_m[b] * air_path_m);
-              band_l = tau_air * band_l + (1.0 - tau_air) * air_band_radiance[b];
-            }
-            sum_l[b] += band_l;
-            sum_l2[b] += band_l * band_l;
-            sum_t[b] += band_t / nodes.quadrature().response_integral();
-          }
-        }
-        more = false;
-        if (path_tracer && target > 0.0 && n + spp <= max_spp)
-          for (std::size_t b = 0; b < sum_l.size(); ++b)
-            more = more || standard_error(sum_l[b], sum_l2[b], n) > target * std::abs(sum_l[b] / n);
-      }
+      Rng rng(scene.settings.seed, pixel);
+      sums.clear();
+      const int n = job.pixel(x, y, rng, *ws, sums);
       samples_taken += n;
       image.samples_per_pixel[pixel] = static_cast<std::uint32_t>(n);
-      for (std::size_t b = 0; b < image.bands.size(); ++b) {
-        const double l = sum_l[b] / n;
-        image.bands[b].radiance[pixel] = static_cast<float>(l);
-        image.bands[b].transmittance[pixel] = static_cast<float>(sum_t[b] / n);
-        image.bands[b].apparent_temperature[pixel] =
-            static_cast<float>(band_nodes[b].quadrature().apparent_temperature(l));
-        if (path_tracer)
-          image.bands[b].radiance_stderr[pixel] =
-              static_cast<float>(standard_error(sum_l[b], sum_l2[b], n));
+      for (std::size_t b = 0; b < bands.size(); ++b) {
+        BandImage& out = image.bands[b];
+        const double l = sums.l[b] / n;
+        out.radiance[pixel] = static_cast<float>(l);
+        out.transmittance[pixel] = static_cast<float>(sums.t[b] / n);
+        out.apparent_temperature[pixel] =
+            static_cast<float>(bands[b].quadrature().apparent_temperature(l));
+        if (monte_carlo)
+          out.radiance_stderr[pixel] = static_cast<float>(standard_error(sums.l[b], sums.l2[b], n));
       }
     }
-    segments += stats.segments;
-    evals += stats.integrand_evals;
+    segments += ws->segments;
+    evals += ws->integrand_evals;
     const int done = ++rows_done;
     if (options.progress) options.progress(done, height);
   });
 
+  const PreparationStats prep = integrator.preparation(sensor_index);
   image.stats.rays = samples_taken;
   image.stats.segments = segments;
   image.stats.integrand_evals = evals;
+  image.stats.photons = prep.photons;
+  image.stats.photon_bytes = prep.photon_bytes;
+  image.stats.photon_seconds = prep.seconds;
+  image.stats.photon_trace_seconds = prep.trace_seconds;
+  image.stats.photon_build_seconds = prep.build_seconds;
+  // The sensor's cost: its pixels and what was prepared for it.
   image.stats.seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() +
+      prep.seconds;
   return image;
+}
+
+}  // namespace
+
+SensorImage render_sensor(const Scene& scene, int sensor, const Integrator& integrator,
+                          const FrameSpectra& spectra, const RenderOptions& options) {
+  const auto i = static_cast<std::size_t>(sensor);
+  OBSCURA_CHECK(i < scene.sensors.size() && i < spectra.size());
+  return render(scene, scene.sensors[i], sensor, integrator, spectra[i], options);
+}
+
+SensorImage render_sensor(const Scene& scene, const Sensor& sensor, const RenderOptions& options) {
+  const FrameSpectra spectra = {sensor_spectra(scene, sensor)};
+  const std::unique_ptr<Integrator> integrator = make_integrator(scene, spectra);
+  return render(scene, sensor, 0, *integrator, spectra[0], options);
 }
 
 }  // namespace obscura

@@ -1,26 +1,40 @@
 #pragma once
-// Renders a sensor's images of a scene: for every pixel and band, band
-// radiance (W m⁻² sr⁻¹), line-of-sight transmittance of the medium up to the
-// first surface (response-weighted over the band, dimensionless) and apparent
-// temperature (K, the blackbody temperature with the same band radiance).
-#include <cstdint>
+// Renders sensors' images of a staged scene (film/sensor_image.h): the pixel
+// and sample loop around an integrator (render/integrator.h). Per pixel it
+// draws stratified sample positions, makes the camera ray, finds its first
+// surface once, asks the integrator for each band's spectral radiance and
+// transmittance at the band's nodes, weights them by the band's quadrature,
+// applies the atmosphere between the sensor and the scene (scene/atmosphere.h)
+// and inverts the band radiance to an apparent temperature. Monte Carlo
+// methods get standard errors and, with a target relative standard error,
+// further rounds of samples per pixel.
+//
+// Determinism: pixel (x, y) of a sensor draws from its own stream, selected
+// by its index y·width + x under settings.seed (core/rng.h); rows go to TBB
+// threads but share no state, so images are bit-identical for any thread
+// count.
 #include <functional>
-#include <string>
-#include <vector>
+#include <memory>
 
-#include "obscura/core/band.h"
 #include "obscura/film/sensor_image.h"
+#include "obscura/render/integrator.h"
+#include "obscura/render/integrator_registry.h"
 #include "obscura/scene/scene.h"
 
 namespace obscura {
 
 struct RenderOptions {
-  int threads = 0;         // 0: all cores
-  std::uint64_t seed = 1;  // per-pixel streams derive from it
   // Called as rows complete, with (rows done, rows total); may be called from any thread.
   std::function<void(int, int)> progress;
 };
 
-SensorImage render_sensor(const Scene& scene, const Sensor& sensor, const RenderOptions& options);
+// Sensor `sensor` of the scene through an integrator made for `spectra`
+// (`spectra[sensor]` its bands' nodes). Threads and seed: scene.settings.
+SensorImage render_sensor(const Scene& scene, int sensor, const Integrator& integrator,
+                          const FrameSpectra& spectra, const RenderOptions& options = {});
+
+// One sensor on its own: prepares the method for that sensor only.
+SensorImage render_sensor(const Scene& scene, const Sensor& sensor,
+                          const RenderOptions& options = {});
 
 }  // namespace obscura

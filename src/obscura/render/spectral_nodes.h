@@ -12,6 +12,10 @@
 
 namespace obscura {
 
+// Largest number of spectral nodes per band the integrators handle: per-ray
+// arrays are this long, on the stack.
+inline constexpr int kMaxSpectralNodes = 64;
+
 struct SpectralNode {
   double wavelength_um = 0;
   double weight_um = 0;  // quadrature weight × response, µm

@@ -5,7 +5,7 @@
 
 namespace obscura {
 
-Scene make_study_scene(StudyScene which, int width, int height, const std::string& method,
+Scene make_study_scene(StudyScene which, int width, int height, RenderMethod method,
                        int resolution) {
   const bool visible = which == StudyScene::kVisible;
   GaussianPuffSpec spec;

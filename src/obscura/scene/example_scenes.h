@@ -19,7 +19,7 @@ enum class StudyScene { kVisible, kLwir };
 
 // The scene with one sensor ("cam") of width × height pixels and the given
 // render method; the puff is voxelised at `resolution`³.
-Scene make_study_scene(StudyScene which, int width, int height, const std::string& method,
+Scene make_study_scene(StudyScene which, int width, int height, RenderMethod method,
                        int resolution = 64);
 
 }  // namespace obscura

@@ -1,11 +1,56 @@
 #pragma once
-// How to render a scene: the solver and its accuracy/effort knobs.
+// How to render a scene: the method and its accuracy/effort knobs. Every
+// setting lives here once: the scene file's "render" object is parsed into
+// it, the command line overrides fields of the same struct, and
+// check_render_settings holds every range (docs/formats.md, "render").
+#include <array>
 #include <cstdint>
+#include <functional>
+#include <optional>
 #include <string>
+#include <string_view>
+
+#include "obscura/core/error.h"
 
 namespace obscura {
 
-// Volume photon mapping ("method": "photonmap"; render/photon_map_integrator.h).
+// The render methods (render/integrator_registry.h makes each one's integrator).
+enum class RenderMethod {
+  kEmissionAbsorption,  // exact, scattering as extinction only
+  kPathTracer,          // unbiased Monte Carlo of the full RTE, with standard errors
+  kPhotonMap,           // volume photon mapping: consistent, biased by the density estimate
+};
+inline constexpr std::array kRenderMethods = {RenderMethod::kEmissionAbsorption,
+                                              RenderMethod::kPathTracer, RenderMethod::kPhotonMap};
+
+// The name a scene file and the command line use ("emission-absorption",
+// "path-tracer", "photonmap").
+std::string_view render_method_name(RenderMethod method);
+// The method of that name; nothing for an unknown name.
+std::optional<RenderMethod> parse_render_method(std::string_view name);
+// "emission-absorption, path-tracer, photonmap": for error messages.
+std::string render_method_names();
+// Whether the method solves scattering (every method but emission–absorption).
+bool method_scatters(RenderMethod method);
+// Whether the method is Monte Carlo: its images carry standard errors and it
+// may take samples until a target relative standard error is met.
+bool method_is_monte_carlo(RenderMethod method);
+
+// The volumetric path tracer ("path_tracer": {…}; render/path_tracer).
+struct PathTracerSettings {
+  int russian_roulette_depth = 4;  // bounces before roulette starts
+  int max_depth = 100000;          // a safety net; roulette ends paths long before
+  // Sample the sky directly at every vertex (combined with the scattering
+  // direction by multiple importance sampling), or find it only by escaping
+  // paths. Both are unbiased. kAuto samples table skies only: for a uniform
+  // blackbody sky the scattering direction is already distributed as well as
+  // the sky's, and the extra ratio-tracked shadow ray only adds noise
+  // (measured, docs/validation.md: furnace standard error 20× larger).
+  enum class SkySampling { kAuto, kAlways, kNever };
+  SkySampling sky_next_event = SkySampling::kAuto;
+};
+
+// Volume photon mapping ("photon_map": {…}; render/photon_map).
 struct PhotonMapSettings {
   long long photons_per_node = 200000;  // launched per spectral node
   int k = 50;                           // nearest photons per estimate
@@ -13,28 +58,42 @@ struct PhotonMapSettings {
   double radius_mean_free_paths = 0.5;  // … and at most this many local mean free paths 1/σt
   double step_m = 1.0;  // longest marching segment (chosen by measurement: docs/validation.md)
   bool pure = false;    // the paper's form: photons for all in-scattering
-  bool camera_sees_sun = true;  // off only where a caller scores the direct beam itself
 };
 
 struct RenderSettings {
-  // "emission-absorption" (exact, scattering as extinction only),
-  // "path-tracer" (unbiased Monte Carlo of the full RTE, with standard errors)
-  // or "photonmap" (volume photon mapping: consistent, biased by the density
-  // estimate, much faster for multiple scattering).
-  std::string method = "emission-absorption";
+  RenderMethod method = RenderMethod::kEmissionAbsorption;
   // Emission-absorption: 1 = the pixel centre, more = stratified jitter.
-  // Path tracer: paths per pixel (each covering every spectral node).
+  // Monte Carlo methods: paths per pixel (each covering every spectral node).
   int samples_per_pixel = 1;
-  // Path tracer: when > 0, each pixel takes further rounds of
+  // Monte Carlo methods: when > 0, each pixel takes further rounds of
   // samples_per_pixel paths until the standard error of every band radiance is
   // at most this fraction of its mean, or max_samples_per_pixel is reached.
   double target_relative_stderr = 0.0;
   int max_samples_per_pixel = 4096;
   int spectral_nodes_per_band = 8;   // Gauss–Legendre nodes across each band
-  double relative_tolerance = 1e-6;  // emission integral per cell
-  std::uint64_t seed = 1;
-  int threads = 0;  // 0: all cores
+  double relative_tolerance = 1e-6;  // emission integral per cell (every method's emission)
+  // Camera rays that escape inside the sun's disc see the sun. Off where a
+  // caller scores the unscattered sunlight itself (validate slab: T_direct).
+  bool camera_sees_sun = true;
+  std::uint64_t seed = 1;  // every random stream derives from it
+  int threads = 0;         // 0: all cores; images do not depend on it
+  PathTracerSettings path_tracer;
   PhotonMapSettings photon_map;
 };
+
+// How a setting is named in an error: `key` is its path below the render
+// object ("samples_per_pixel", "photon_map/k"). The scene loader names the
+// file and JSON path; the command line names its option.
+using SettingError = std::function<InputError(std::string_view key, std::string_view what)>;
+
+// Throws the InputError `error` makes for the first setting out of its range
+// or not meant for the method (target_relative_stderr with
+// emission–absorption).
+void check_render_settings(const RenderSettings& settings, const SettingError& error);
+
+class JsonObject;
+// The "render" object of a scene file over `defaults`: unknown keys, wrong
+// types and out-of-range values are InputErrors naming the JSON path.
+RenderSettings parse_render_settings(JsonObject& render, RenderSettings defaults = {});
 
 }  // namespace obscura

@@ -486,65 +486,8 @@ Scene parse_scene(const nlohmann::json& doc, const std::filesystem::path& file) 
     sun->finish();
   }
 
-  if (auto r = root.optional_object("render")) {
-    RenderSettings& s = scene.settings;
-    s.method = r->string_or("method", s.method);
-    if (s.method != "emission-absorption" && s.method != "path-tracer" && s.method != "photonmap")
-      throw r->error("method", fmt::format("unknown method '{}' (available: emission-absorption, "
-                                           "path-tracer, photonmap)",
-                                           s.method));
-    if (auto pm = r->optional_object("photon_map")) {
-      if (s.method != "photonmap")
-        throw r->error("photon_map", "applies to \"method\": \"photonmap\" only");
-      PhotonMapSettings& p = s.photon_map;
-      p.photons_per_node = pm->integer_or("photons", p.photons_per_node);
-      if (p.photons_per_node < 1 || p.photons_per_node > 2000000000LL)
-        throw pm->error("photons", "must lie in [1, 2e9] (photons launched per spectral node)");
-      const long long k = pm->integer_or("k", p.k);
-      if (k < 1 || k > 4096) throw pm->error("k", "must lie in [1, 4096]");
-      p.k = static_cast<int>(k);
-      p.max_radius_m = pm->positive_or("max_radius_m", p.max_radius_m);
-      p.step_m = pm->positive_or("step_m", p.step_m);
-      p.radius_mean_free_paths =
-          pm->positive_or("radius_mean_free_paths", p.radius_mean_free_paths);
-      const std::string form = pm->string_or("form", "hybrid");
-      if (form != "hybrid" && form != "pure")
-        throw pm->error("form",
-                        "must be \"hybrid\" (shadow rays for single scattering) or \"pure\" "
-                        "(photons for all scattering, the source paper's form)");
-      p.pure = form == "pure";
-      pm->finish();
-    }
-    const long long spp = r->integer_or("samples_per_pixel", s.samples_per_pixel);
-    if (spp < 1 || spp > 65536) throw r->error("samples_per_pixel", "must lie in [1, 65536]");
-    s.samples_per_pixel = static_cast<int>(spp);
-    s.target_relative_stderr = r->number_or("target_relative_stderr", 0.0);
-    if (!(s.target_relative_stderr >= 0 && s.target_relative_stderr < 1))
-      throw r->error("target_relative_stderr", "must lie in [0, 1) (0: a fixed sample count)");
-    const long long max_spp = r->integer_or("max_samples_per_pixel", s.max_samples_per_pixel);
-    if (max_spp < 1 || max_spp > 1048576)
-      throw r->error("max_samples_per_pixel", "must lie in [1, 1048576]");
-    s.max_samples_per_pixel = static_cast<int>(max_spp);
-    const long long nodes = r->integer_or("spectral_nodes_per_band", s.spectral_nodes_per_band);
-    if (nodes < 1 || nodes > 64) throw r->error("spectral_nodes_per_band", "must lie in [1, 64]");
-    s.spectral_nodes_per_band = static_cast<int>(nodes);
-    s.relative_tolerance = r->number_or("relative_tolerance", s.relative_tolerance);
-    if (!(s.relative_tolerance >= 1e-12 && s.relative_tolerance <= 0.1))
-      throw r->error("relative_tolerance", "must lie in [1e-12, 0.1]");
-    const long long seed = r->integer_or("seed", static_cast<long long>(s.seed));
-    if (seed < 0) throw r->error("seed", "must be >= 0");
-    s.seed = static_cast<std::uint64_t>(seed);
-    const long long threads = r->integer_or("threads", s.threads);
-    if (threads < 0 || threads > 4096)
-      throw r->error("threads", "must lie in [0, 4096] (0: all cores)");
-    s.threads = static_cast<int>(threads);
-    r->finish();
-  }
-  if (scene.settings.target_relative_stderr > 0 && scene.settings.method == "emission-absorption")
-    throw root.error("render",
-                     "target_relative_stderr applies to the Monte Carlo methods only (set "
-                     "/render/method to \"path-tracer\" or \"photonmap\")");
-  if (scene.sun.enabled && scene.settings.method == "emission-absorption")
+  if (auto r = root.optional_object("render")) scene.settings = parse_render_settings(*r);
+  if (scene.sun.enabled && !method_scatters(scene.settings.method))
     throw root.error(
         "sun",
         "the sun lights clouds through scattering: set /render/method to "

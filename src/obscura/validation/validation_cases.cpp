@@ -2,10 +2,12 @@
 
 #include <fmt/format.h>
 
+#include <atomic>
 #include <boost/math/special_functions/expint.hpp>
 #include <cmath>
 #include <fstream>
 #include <limits>
+#include <map>
 #include <numbers>
 
 #include "obscura/core/error.h"
@@ -16,8 +18,7 @@
 #include "obscura/medium/grid_medium.h"
 #include "obscura/medium/homogeneous_medium.h"
 #include "obscura/medium/tracking.h"
-#include "obscura/render/photon_map/photon_map_integrator.h"
-#include "obscura/render/path_tracer/volume_path_tracer.h"
+#include "obscura/render/integrator_registry.h"
 
 namespace obscura {
 namespace {
@@ -45,11 +46,11 @@ MeanEstimate estimate(const ValidationOptions& o, double target_stderr, std::uin
     const long long batch = o.samples > 0 ? o.samples : kAutoBatch;
     const std::size_t chunks = static_cast<std::size_t>((batch + kChunk - 1) / kChunk);
     std::vector<double> chunk_sum(chunks, 0.0), chunk_sum2(chunks, 0.0);
-    parallel_for(chunks, o.threads, [&](std::size_t c) {
+    parallel_for(chunks, o.settings.threads, [&](std::size_t c) {
       const long long begin = static_cast<long long>(c) * kChunk;
       const long long end = std::min(batch, begin + kChunk);
       for (long long i = begin; i < end; ++i) {
-        Rng rng(o.seed, stream_base + static_cast<std::uint64_t>(n + i));
+        Rng rng(o.settings.seed, stream_base + static_cast<std::uint64_t>(n + i));
         const double x = sample(rng);
         chunk_sum[c] += x;
         chunk_sum2[c] += x * x;
@@ -81,42 +82,62 @@ ValidationRow row(std::string case_name, std::string quantity, double reference,
   return r;
 }
 
-// The solver a case runs through (ValidationOptions::method): the path tracer,
-// or the photon-map integrator with its photons traced for the case's scene,
-// both at one wavelength.
+// The solver a case runs through (ValidationOptions::settings): the
+// integrator of the chosen method, made for the case's scene at one
+// wavelength, as the renderer would make it for a one-band sensor.
 class Solver {
  public:
-  Solver(const Scene& scene, double wavelength_um, const ValidationOptions& o,
-         const PathTracerSettings& pt = {})
-      : scene_(scene), pt_(pt) {
-    nodes_.emplace_back(
+  // `scene` gets the options' settings; `scatters`: whether the case needs a
+  // method that solves scattering.
+  Solver(Scene& scene, double wavelength_um, const ValidationOptions& o, bool scatters,
+         bool camera_sees_sun = true)
+      : id_(++next_id_) {
+    scene.settings = o.settings;
+    scene.settings.camera_sees_sun = camera_sees_sun;
+    if (scatters && !method_scatters(o.settings.method))
+      throw InputError("", "--method",
+                       fmt::format("{} treats scattering as extinction only: it solves the "
+                                   "emitting-slab case and equilibrium with --albedo 0",
+                                   render_method_name(o.settings.method)));
+    spectra_ = {{SpectralNodes(
         BandQuadrature(Band::flat("mono", wavelength_um - 1e-6, wavelength_um + 1e-6), 1, 0.0),
-        scene.medium->wavelengths_um());
-    if (o.method == "photonmap") {
-      PhotonMapSettings pm = o.photon_map;
-      pm.camera_sees_sun = pt.camera_sees_sun;
-      photon_map_ = std::make_unique<PhotonMapIntegrator>(scene, nodes_, pm, o.seed, o.threads);
-    } else if (o.method != "path-tracer") {
-      throw InputError("", "--method", "must be path-tracer or photonmap (got " + o.method + ")");
-    }
+        scene.medium->wavelengths_um())}};
+    integrator_ = make_integrator(scene, spectra_);
+    scene_ = &scene;
   }
-  const SpectralNode& node() const { return nodes_[0].nodes()[0]; }
+  const SpectralNode& node() const { return spectra_[0][0].nodes()[0]; }
+  // The spectral radiance arriving along −ray.direction at ray.origin.
   double operator()(const Ray& ray, Rng& rng) const {
-    if (!photon_map_) return trace_path(scene_, ray, node(), rng, pt_);
-    double l = 0.0;
-    photon_map_->radiance(ray, 0, rng, &l);
+    RayWorkspace& ws = workspace();
+    const CameraRay camera = find_camera_ray_hit(*scene_, ray);
+    integrator_->begin_ray(camera, ws);
+    double l = 0.0, t = 0.0;
+    integrator_->band_radiance(camera, 0, 0, rng, ws, &l, &t);
     return l;
   }
   // The photon map is judged at 2 % (issue #4): its density estimate is biased.
   double tolerance(double case_tolerance) const {
-    return photon_map_ ? std::max(case_tolerance, 0.02) : case_tolerance;
+    return integrator_->method() == RenderMethod::kPhotonMap ? std::max(case_tolerance, 0.02)
+                                                              : case_tolerance;
   }
 
  private:
-  const Scene& scene_;
-  PathTracerSettings pt_;
-  std::vector<SpectralNodes> nodes_;
-  std::unique_ptr<PhotonMapIntegrator> photon_map_;
+  // One workspace per thread and solver, made on first use: draws are
+  // scattered over threads by the estimator, and a ray must not allocate.
+  RayWorkspace& workspace() const {
+    thread_local std::uint64_t owner = 0;
+    thread_local std::unique_ptr<RayWorkspace> ws;
+    if (owner != id_) {
+      ws = integrator_->make_workspace();
+      owner = id_;
+    }
+    return *ws;
+  }
+  static inline std::atomic<std::uint64_t> next_id_{0};
+  std::uint64_t id_;
+  const Scene* scene_ = nullptr;
+  FrameSpectra spectra_;
+  std::unique_ptr<Integrator> integrator_;
 };
 
 void check(const std::string& field, double v, double lo, double hi, const char* what) {
@@ -128,6 +149,17 @@ void check_options(const ValidationOptions& o) {
   if (o.samples != 0 && o.samples < 2)
     throw InputError("", "--samples",
                      "must be at least 2 (or 0: until the standard error is small enough)");
+  // The settings `obscura validate` takes on its command line are named by
+  // their options; the rest by their place in a scene's render object.
+  static const std::map<std::string_view, std::string_view> kOptions = {
+      {"photon_map/photons", "--photons"},  {"photon_map/k", "--k"},
+      {"photon_map/max_radius_m", "--max-radius"}, {"photon_map/step_m", "--step"},
+      {"threads", "--threads"}};
+  check_render_settings(o.settings, [](std::string_view key, std::string_view what) {
+    const auto it = kOptions.find(key);
+    return InputError("", it != kOptions.end() ? std::string(it->second) : "render/" + std::string(key),
+                      std::string(what));
+  });
 }
 
 // Half the tolerance: the automatic sample count resolves a bias of `tolerance`.
@@ -153,7 +185,7 @@ std::vector<ValidationRow> validate_furnace(double tau, double g, const Validati
   scene.medium = std::make_shared<HomogeneousMedium>(
       BBox3({0, 0, 0}, {1, 1, 1}), std::vector<double>{10.0}, std::vector<double>{0.0},
       std::vector<double>{tau}, std::vector<double>{g}, 0.0);
-  const Solver solver(scene, 10.0, o);
+  const Solver solver(scene, 10.0, o, true);
   const double tol = solver.tolerance(0.005);
   const double l0 = planck_radiance(10.0, 300.0);
   const MeanEstimate e = estimate(o, target(tol, 1.0), 0, [&](Rng& rng) {
@@ -178,7 +210,7 @@ std::vector<ValidationRow> validate_equilibrium(double albedo, double tau, doubl
       BBox3({0, 0, 0}, {1, 1, 1}), std::vector<double>{4.0},
       std::vector<double>{tau * (1 - albedo)}, std::vector<double>{tau * albedo},
       std::vector<double>{g}, temperature_k);
-  const Solver solver(scene, 4.0, o);
+  const Solver solver(scene, 4.0, o, albedo > 0.0);
   const double tol = solver.tolerance(0.005);
   const double b = planck_radiance(4.0, temperature_k);
   const MeanEstimate e = estimate(o, target(tol, 1.0), 0, [&](Rng& rng) {
@@ -198,7 +230,7 @@ std::vector<ValidationRow> validate_emitting_slab(double tau, double temperature
   scene.medium = std::make_shared<HomogeneousMedium>(
       BBox3({-1e5, -1e5, 0}, {1e5, 1e5, 1}), std::vector<double>{10.0}, std::vector<double>{tau},
       std::vector<double>{0.0}, std::vector<double>{0.0}, temperature_k);
-  const Solver solver(scene, 10.0, o);
+  const Solver solver(scene, 10.0, o, false);
   const double tol = solver.tolerance(0.005);
   const double reference = -std::expm1(-tau);
   const double b = planck_radiance(10.0, temperature_k);
@@ -223,7 +255,7 @@ std::vector<ValidationRow> validate_single_scatter(double tau, double g,
   scene.medium = std::make_shared<HomogeneousMedium>(
       BBox3({-1e5, -1e5, 0}, {1e5, 1e5, d}), std::vector<double>{0.55}, std::vector<double>{0.0},
       std::vector<double>{sigma_s}, std::vector<double>{g}, 0.0);
-  const Solver solver(scene, 0.55, o);
+  const Solver solver(scene, 0.55, o, true);
   const Vec3 view = normalize(Vec3(-0.3, 0.2, 1.0));
   const double mu = view.z, mu0 = scene.sun.direction().z;
   const double cos_scatter = dot(view, scene.sun.direction());
@@ -358,10 +390,6 @@ std::vector<ValidationRow> validate_slab(const SlabSpec& slab,
       BBox3({-w, -w, 0}, {w, w, kThickness}), std::vector<double>{kWavelength},
       std::vector<double>{slab.tau * (1 - slab.albedo)},
       std::vector<double>{slab.tau * slab.albedo}, std::vector<double>{slab.g}, 0.0);
-  PathTracerSettings pt;
-  // The unscattered beam is scored by ratio tracking (T_direct); camera rays
-  // must not see the sun's disc as well.
-  pt.camera_sees_sun = false;
 
   // Fluxes by reciprocity: the radiance L leaving a face, averaged over
   // cosine-distributed directions, is F/π. Collimated: the sun (a 0.01° disc)
@@ -382,7 +410,9 @@ std::vector<ValidationRow> validate_slab(const SlabSpec& slab,
     norm = 1.0 / planck_radiance(kWavelength, 5778.0);
   }
   const bool diffuse = slab.incidence == SlabIncidence::kDiffuse;
-  const Solver solver(scene, kWavelength, o, pt);
+  // The unscattered beam is scored by ratio tracking (T_direct); camera rays
+  // must not see the sun's disc as well.
+  const Solver solver(scene, kWavelength, o, slab.albedo > 0.0, false);
   const SpectralLerp lambda = solver.node().lerp();
 
   auto up_ray = [](Rng& rng, double z) {  // a cosine-distributed upward direction

@@ -34,12 +34,18 @@ struct ValidationOptions {
   // Paths (or estimates) per quantity; 0: batches of 50 000 until the standard
   // error is below half the tolerance (at most 5e7).
   int samples = 0;
-  std::uint64_t seed = 1;
-  int threads = 0;  // 0: all cores; results do not depend on it
-  // "path-tracer", or "photonmap" (judged at 2 % at least; the slab then needs
-  // a finite --half-width: photons spread over the slab's whole width).
-  std::string method = "path-tracer";
-  PhotonMapSettings photon_map;
+  // The solver and its settings (scene/render_settings.h), checked as a scene
+  // file's are; settings.seed and settings.threads also drive the cases' own
+  // sampling (results do not depend on the thread count). Monte Carlo methods
+  // only, except emission–absorption on the cases without scattering
+  // (emitting-slab, equilibrium with albedo 0). The photon map is judged at
+  // 2 % at least (its density estimate is biased); the slab then needs a
+  // finite --half-width (photons spread over the slab's whole width).
+  RenderSettings settings = [] {
+    RenderSettings s;
+    s.method = RenderMethod::kPathTracer;
+    return s;
+  }();
 };
 
 // White furnace: a conservative (albedo 1) cube of optical side τ and

@@ -23,12 +23,14 @@ struct Estimate {
   double mean, stderr_mean;
 };
 
-Estimate estimate(const Scene& scene, const Ray& ray, const SpectralNode& node, int n,
+// `settings` become the scene's (trace_path reads scene.settings.path_tracer).
+Estimate estimate(Scene& scene, const Ray& ray, const SpectralNode& node, int n,
                   std::uint64_t stream, const PathTracerSettings& settings = {}) {
+  scene.settings.path_tracer = settings;
   Rng rng(42, stream);
   double sum = 0, sum2 = 0;
   for (int i = 0; i < n; ++i) {
-    const double l = trace_path(scene, ray, node, rng, settings);
+    const double l = trace_path(scene, ray, node, rng);
     sum += l;
     sum2 += l * l;
   }

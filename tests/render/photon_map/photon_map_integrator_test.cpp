@@ -2,6 +2,7 @@
 // furnace and equilibrium (hybrid and pure forms) and a slab through `validate` (2 %,
 // issue #4), the two study scenes against a path-traced reference image, and
 // thread independence.
+#include "support/render_helpers.h"
 #include "obscura/render/photon_map/photon_map_integrator.h"
 
 #include <gtest/gtest.h>
@@ -18,8 +19,8 @@ namespace {
 
 ValidationOptions photon_map_options(long long photons) {
   ValidationOptions o;
-  o.method = "photonmap";
-  o.photon_map.photons_per_node = photons;
+  o.settings.method = RenderMethod::kPhotonMap;
+  o.settings.photon_map.photons_per_node = photons;
   o.samples = 20000;
   return o;
 }
@@ -33,7 +34,7 @@ TEST(PhotonMapIntegrator, FurnaceAndEquilibriumInBothForms) {
     EXPECT_TRUE(r.pass) << r.quantity << " " << r.obtained << " ± " << r.stderr_mean;
   // The paper's pure form: all in-scattering, single included, from photons.
   ValidationOptions pure = photon_map_options(200000);
-  pure.photon_map.pure = true;
+  pure.settings.photon_map.pure = true;
   for (const auto& r : validate_furnace(1.0, 0.5, pure))
     EXPECT_TRUE(r.pass) << r.quantity << " " << r.obtained << " ± " << r.stderr_mean;
 }
@@ -70,28 +71,24 @@ double systematic_rmse(const BandImage& a, const BandImage& b) {
 TEST(PhotonMapIntegrator, StudyScenesAgreeWithThePathTracer) {
   for (const StudyScene which : {StudyScene::kLwir, StudyScene::kVisible}) {
     const bool visible = which == StudyScene::kVisible;
-    Scene pt = make_study_scene(which, 16, 12, "path-tracer", 48);
+    Scene pt = make_study_scene(which, 16, 12, RenderMethod::kPathTracer, 48);
     pt.settings.samples_per_pixel = visible ? 4096 : 1024;
-    Scene pm = make_study_scene(which, 16, 12, "photonmap", 48);
+    Scene pm = make_study_scene(which, 16, 12, RenderMethod::kPhotonMap, 48);
     pm.settings.samples_per_pixel = 64;
     pm.settings.photon_map.photons_per_node = visible ? 3000000 : 1000000;
-    RenderOptions o;
-    const SensorImage reference = render_sensor(pt, pt.sensors[0], o);
-    const SensorImage photon = render_sensor(pm, pm.sensors[0], o);
+    const SensorImage reference = render_sensor(pt, pt.sensors[0]);
+    const SensorImage photon = render_sensor(pm, pm.sensors[0]);
     const double e = systematic_rmse(photon.bands[0], reference.bands[0]);
     EXPECT_LT(e, 0.02) << (visible ? "visible" : "lwir");
   }
 }
 
 TEST(PhotonMapIntegrator, ImagesDoNotDependOnTheThreadCount) {
-  Scene scene = make_study_scene(StudyScene::kVisible, 12, 8, "photonmap", 32);
+  Scene scene = make_study_scene(StudyScene::kVisible, 12, 8, RenderMethod::kPhotonMap, 32);
   scene.settings.samples_per_pixel = 2;
   scene.settings.photon_map.photons_per_node = 20000;
-  RenderOptions one, two;
-  one.threads = 1;
-  two.threads = 2;
-  const SensorImage a = render_sensor(scene, scene.sensors[0], one);
-  const SensorImage b = render_sensor(scene, scene.sensors[0], two);
+  const SensorImage a = testing::render_first_sensor(scene, 1);
+  const SensorImage b = testing::render_first_sensor(scene, 2);
   EXPECT_EQ(a.stats.photons, b.stats.photons);
   EXPECT_GT(a.stats.photons, 0u);
   EXPECT_EQ(0, std::memcmp(a.bands[0].radiance.data(), b.bands[0].radiance.data(),

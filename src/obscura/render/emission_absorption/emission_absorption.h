@@ -15,9 +15,6 @@
 
 namespace obscura {
 
-// Largest number of spectral nodes per band the integrator handles.
-inline constexpr int kMaxSpectralNodes = 64;
-
 struct EmissionAbsorptionStats {
   std::uint64_t segments = 0;         // medium segments (voxel cells) visited
   std::uint64_t integrand_evals = 0;  // evaluations of the emission integrand

@@ -38,12 +38,21 @@ double sky_next_event(const Scene& scene, const Vec3& position, const SpectralNo
 
 }  // namespace
 
-double trace_path(const Scene& scene, const Ray& camera_ray, const SpectralNode& node, Rng& rng,
-                  const PathTracerSettings& settings) {
+double trace_path(const Scene& scene, const Ray& ray, const SpectralNode& node, Rng& rng) {
+  CameraRay camera;
+  camera.ray = ray;
+  camera.on_surface = intersect_surfaces(scene.surfaces, ray, 1e-9,
+                                         std::numeric_limits<double>::infinity(), camera.hit);
+  return trace_path(scene, camera, node, rng);
+}
+
+double trace_path(const Scene& scene, const CameraRay& camera, const SpectralNode& node,
+                  Rng& rng) {
+  const PathTracerSettings& settings = scene.settings.path_tracer;
   const Medium* medium = scene.medium.get();
   const SpectralLerp lambda = node.lerp();
   MediumPoint point;
-  Ray ray = camera_ray;
+  Ray ray = camera.ray;
   double radiance = 0.0, beta = 1.0;
   using SkySampling = PathTracerSettings::SkySampling;
   const bool sky_lit = !scene.sky.is_black() &&
@@ -51,9 +60,12 @@ double trace_path(const Scene& scene, const Ray& camera_ray, const SpectralNode&
                         (settings.sky_next_event == SkySampling::kAuto && scene.sky.is_table()));
   double last_scatter_pdf = 0.0;  // density of the direction the path now follows
   for (int depth = 0; depth < settings.max_depth; ++depth) {
-    SurfaceHit hit;
+    // The camera ray's surface is known; every later segment looks for its own.
+    SurfaceHit hit = camera.hit;
     const bool on_surface =
-        intersect_surfaces(scene.surfaces, ray, 1e-9, std::numeric_limits<double>::infinity(), hit);
+        depth == 0 ? camera.on_surface
+                   : intersect_surfaces(scene.surfaces, ray, 1e-9,
+                                        std::numeric_limits<double>::infinity(), hit);
     const double t_surface = on_surface ? hit.t : std::numeric_limits<double>::infinity();
     const auto collision =
         medium ? sample_free_flight(*medium, ray, t_surface, lambda, rng, point) : std::nullopt;
@@ -116,7 +128,7 @@ double trace_path(const Scene& scene, const Ray& camera_ray, const SpectralNode&
                        : power_heuristic(last_scatter_pdf, scene.sky.pdf(ray.direction)));
       // The sun's disc is seen directly only by camera rays: after a bounce,
       // next-event estimation already counts it.
-      if (depth == 0 && settings.camera_sees_sun && scene.sun.enabled &&
+      if (depth == 0 && scene.settings.camera_sees_sun && scene.sun.enabled &&
           dot(ray.direction, scene.sun.direction()) >= scene.sun.cos_half_angle())
         radiance += beta * scene.sun.radiance(node.wavelength_um);
       break;

@@ -20,36 +20,23 @@
 //  * under a table sky, at every collision and surface hit the sky is also
 //    sampled directly (from Sky::sample, ratio-tracked transmittance), and an
 //    escaping path's sky radiance and the direct sample are weighted by the
-//    power heuristic (PathTracerSettings::sky_next_event);
+//    power heuristic (PathTracerSettings::sky_next_event, scene/render_settings.h);
 //  * an escaping path adds β L_sky (MIS-weighted after a bounce);
 //  * after a few bounces Russian roulette on β (survival probability
 //    min(β, 0.99)) ends paths without bias.
 #include "obscura/core/rng.h"
 #include "obscura/medium/tracking.h"
+#include "obscura/render/integrator.h"
 #include "obscura/render/spectral_nodes.h"
 #include "obscura/scene/scene.h"
 
 namespace obscura {
 
-struct PathTracerSettings {
-  int russian_roulette_depth = 4;  // bounces before roulette starts
-  int max_depth = 100000;          // a safety net; roulette ends paths long before
-  // Camera rays that escape inside the sun's disc see the sun. Off when a
-  // caller scores the unscattered sunlight itself (validate slab: T_direct).
-  bool camera_sees_sun = true;
-  // Sample the sky directly at every vertex (combined with the scattering
-  // direction by multiple importance sampling), or find it only by escaping
-  // paths. Both are unbiased. kAuto samples table skies only: for a uniform
-  // blackbody sky the scattering direction is already distributed as well as
-  // the sky's, and the extra ratio-tracked shadow ray only adds noise
-  // (measured, docs/validation.md: furnace standard error 20× larger).
-  enum class SkySampling { kAuto, kAlways, kNever };
-  SkySampling sky_next_event = SkySampling::kAuto;
-};
-
 // One-sample estimate of the spectral radiance (W m⁻² sr⁻¹ µm⁻¹) arriving
-// along -ray.direction at ray.origin, at spectral node `node`.
-double trace_path(const Scene& scene, const Ray& ray, const SpectralNode& node, Rng& rng,
-                  const PathTracerSettings& settings = {});
+// along -ray.direction at ray.origin, at spectral node `node`, with the
+// scene's settings (RenderSettings::path_tracer and camera_sees_sun). The
+// first form takes the ray's first surface as found by the renderer.
+double trace_path(const Scene& scene, const CameraRay& camera, const SpectralNode& node, Rng& rng);
+double trace_path(const Scene& scene, const Ray& ray, const SpectralNode& node, Rng& rng);
 
 }  // namespace obscura

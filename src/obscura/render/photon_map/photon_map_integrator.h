@@ -1,7 +1,7 @@
 #pragma once
-// Pass 2 of volume photon mapping: ray marching from the sensor with the
-// photon maps of pass 1 (photon/photon_tracing.h) giving the in-scattered
-// radiance (docs/physics.md, "Volume photon mapping").
+// "method": "photonmap", pass 2 of volume photon mapping: ray marching from
+// the sensor with the photon maps of pass 1 (photon_tracing.h) giving the
+// in-scattered radiance (docs/physics.md, "Volume photon mapping").
 //
 // Along a camera ray up to the first surface:
 //  * emission and transmittance exactly, by the emission–absorption
@@ -28,47 +28,70 @@
 #include <vector>
 
 #include "obscura/core/rng.h"
+#include "obscura/medium/phase_function.h"
+#include "obscura/render/integrator.h"
 #include "obscura/render/photon_map/photon_map.h"
 #include "obscura/render/photon_map/photon_tracing.h"
-#include "obscura/render/spectral_nodes.h"
-#include "obscura/scene/scene.h"
 
 namespace obscura {
 
-// Photon maps for every spectral node of every band of a sensor, traced once
-// per staged scene; then radiance along rays.
-class PhotonMapIntegrator {
+// Photon maps for every spectral node of every band of every sensor, traced
+// once per staged scene when the integrator is made; then radiance along rays.
+class PhotonMapIntegrator final : public Integrator {
  public:
-  PhotonMapIntegrator(const Scene& scene, const std::vector<SpectralNodes>& band_nodes,
-                      const PhotonMapSettings& settings, std::uint64_t seed, int threads);
+  PhotonMapIntegrator(const Scene& scene, const FrameSpectra& spectra);
 
-  // Spectral radiance (W m⁻² sr⁻¹ µm⁻¹) arriving along −ray.direction at
-  // ray.origin for every node of band `band`, written to out[node].
-  // `depth` counts surface bounces of final gathering (0 for camera rays).
-  void radiance(const Ray& ray, int band, Rng& rng, double* out, int depth = 0) const;
+  RenderMethod method() const override { return RenderMethod::kPhotonMap; }
+  std::unique_ptr<RayWorkspace> make_workspace() const override;
+  void begin_ray(const CameraRay& ray, RayWorkspace& workspace) const override;
+  void band_radiance(const CameraRay& ray, int sensor, int band, Rng& rng, RayWorkspace& workspace,
+                     double* radiance, double* transmittance) const override;
+  PreparationStats preparation(int sensor) const override { return preparation_[sensor]; }
 
-  const PhotonMapSettings& settings() const { return settings_; }
-  // Stored photons over all maps, bytes they use, and what pass 1 launched.
+  // Stored photons over all maps and the bytes they use.
   std::size_t photon_count() const;
   std::size_t memory_bytes() const;
-  // Wall time of pass 1, s: tracing the photons, and building the kd-trees.
-  double tracing_seconds() const { return tracing_seconds_; }
-  double build_seconds() const { return build_seconds_; }
-  const TracedPhotons& traced(int band, int node) const { return maps_[band][node].traced; }
-  const PhotonMap& map(int band, int node) const { return *maps_[band][node].map; }
+  const TracedPhotons& traced(int sensor, int band, int node) const {
+    return maps_[sensor][band][node].traced;
+  }
+  const PhotonMap& map(int sensor, int band, int node) const {
+    return *maps_[sensor][band][node].map;
+  }
 
  private:
   struct NodeMap {
     TracedPhotons traced;  // photons moved into `map`; powers and counts kept
     std::unique_ptr<PhotonMap> map;
-    double sun_irradiance =
-        0.0;  // W m⁻² µm⁻¹ at the node, 0 without a sun (used at every marching step)
+    double sun_irradiance = 0.0;  // W m⁻² µm⁻¹ at the node, 0 without a sun
   };
+  struct Workspace;
+  using BandMaps = std::vector<NodeMap>;  // one per spectral node of a band
+
+  // Spectral radiance along `camera` at every node of `nodes`; `depth` counts
+  // surface bounces of final gathering (0 for camera rays).
+  void radiance_along(const CameraRay& camera, const SpectralNodes& nodes, const BandMaps& maps,
+                      Rng& rng, Workspace& ws, double* out, int depth) const;
+  // ∫ e^{−τ} J dt along the camera ray, per node, added to scattered[node].
+  void march_in_scattering(const CameraRay& camera, const SpectralNodes& nodes,
+                           const BandMaps& maps, Rng& rng, Workspace& ws, double* scattered) const;
+  // σs times the single scattering of the sun and the environment at x
+  // towards −direction (the hybrid form's shadow rays).
+  double single_scattering(const Vec3& x, const Vec3& direction, const SpectralNode& node,
+                           const NodeMap& map, double sigma_s, const HenyeyGreenstein& phase,
+                           Rng& rng, Workspace& ws) const;
+  // σs times the in-scattered radiance the k nearest photons give at x.
+  double photon_estimate(const Vec3& x, const Vec3& toward_camera, const SpectralLerp& lambda,
+                         const PhotonMap& map, double sigma_s, double sigma_t,
+                         const HenyeyGreenstein& phase, Workspace& ws) const;
+  // What the camera ray sees behind the medium, per node.
+  void background(const CameraRay& camera, const SpectralNodes& nodes, const BandMaps& maps,
+                  Rng& rng, Workspace& ws, int depth, double* out) const;
+
   const Scene& scene_;
-  const std::vector<SpectralNodes>& band_nodes_;
+  const FrameSpectra& spectra_;
   PhotonMapSettings settings_;
-  std::vector<std::vector<NodeMap>> maps_;
-  double tracing_seconds_ = 0.0, build_seconds_ = 0.0;
+  std::vector<std::vector<BandMaps>> maps_;  // [sensor][band][node]
+  std::vector<PreparationStats> preparation_;  // per sensor
 };
 
 }  // namespace obscura

@@ -1,0 +1,77 @@
+#pragma once
+// Progress of a render on stderr for runs longer than a second: a rewritten
+// line on a terminal, an occasional line otherwise (logs, CI). One line per
+// sensor and frame, labelled "tv frame 3/16 (t = 4 s)" in a sequence.
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <iostream>
+#include <mutex>
+#include <string>
+
+#include "obscura/scene/scene.h"
+#include "obscura/sequence/sequence_runner.h"
+
+namespace obscura::cli {
+
+class ProgressPrinter {
+ public:
+  ProgressPrinter(const Scene& scene, bool sequence)
+      : scene_(scene), sequence_(sequence), tty_(isatty(STDERR_FILENO) != 0) {}
+
+  // May be called from any thread.
+  void update(const RenderProgress& p) {
+    std::lock_guard lock(mutex_);
+    if (p.frame != frame_ || p.sensor != sensor_) start(p);
+    const double elapsed = seconds();
+    if (elapsed < 1.0) return;
+    const double interval = tty_ ? 0.25 : 5.0;
+    if (p.rows_done != p.rows_total && elapsed - last_ < interval) return;
+    last_ = elapsed;
+    const double eta =
+        p.rows_done > 0 ? elapsed * (p.rows_total - p.rows_done) / p.rows_done : 0.0;
+    std::cerr << fmt::format("{}render {}: {:5.1f}% ({}/{} rows, {:.1f} s, ~{:.0f} s left){}",
+                             tty_ ? "\r" : "", label_, 100.0 * p.rows_done / p.rows_total,
+                             p.rows_done, p.rows_total, elapsed, eta, tty_ ? "" : "\n");
+    printed_ = true;
+  }
+  // Ends the current line on a terminal.
+  void finish() {
+    std::lock_guard lock(mutex_);
+    end_line();
+  }
+
+ private:
+  void start(const RenderProgress& p) {
+    end_line();
+    frame_ = p.frame;
+    sensor_ = p.sensor;
+    const std::string& name = scene_.sensors[static_cast<std::size_t>(p.sensor)].name;
+    label_ = sequence_ ? fmt::format("{} frame {}/{} (t = {:.4g} s)", name, p.frame + 1, p.frames,
+                                     p.time_s)
+                       : name;
+    start_ = std::chrono::steady_clock::now();
+    last_ = -1e9;
+  }
+  void end_line() {
+    if (printed_ && tty_) std::cerr << "\n";
+    printed_ = false;
+  }
+  double seconds() const {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  }
+
+  const Scene& scene_;
+  bool sequence_;
+  bool tty_;
+  std::mutex mutex_;
+  std::size_t frame_ = static_cast<std::size_t>(-1);
+  int sensor_ = -1;
+  std::string label_;
+  std::chrono::steady_clock::time_point start_;
+  double last_ = -1e9;
+  bool printed_ = false;
+};
+
+}  // namespace obscura::cli

@@ -1,0 +1,32 @@
+#include "obscura/render/integrator.h"
+
+namespace obscura {
+
+CameraRay find_camera_ray_hit(const Scene& scene, const Ray& ray) {
+  CameraRay c;
+  c.ray = ray;
+  c.on_surface = intersect_surfaces(scene.surfaces, ray, 0.0,
+                                    std::numeric_limits<double>::infinity(), c.hit);
+  return c;
+}
+
+std::vector<SpectralNodes> sensor_spectra(const Scene& scene, const Sensor& sensor) {
+  static const std::vector<double> grey = {1.0};
+  const std::vector<double>& medium_wl = scene.medium ? scene.medium->wavelengths_um() : grey;
+  std::vector<SpectralNodes> bands;
+  for (const Band& band : sensor.bands) {
+    bands.emplace_back(BandQuadrature(band, scene.settings.spectral_nodes_per_band, 0.0),
+                       medium_wl);
+    if (bands.back().size() > static_cast<std::size_t>(kMaxSpectralNodes))
+      throw InputError("", "band " + band.name(), "too many spectral nodes for one band");
+  }
+  return bands;
+}
+
+FrameSpectra frame_spectra(const Scene& scene) {
+  FrameSpectra spectra;
+  for (const Sensor& sensor : scene.sensors) spectra.push_back(sensor_spectra(scene, sensor));
+  return spectra;
+}
+
+}  // namespace obscura

@@ -1,0 +1,41 @@
+#include "obscura/render/integrator_registry.h"
+
+#include <string>
+
+#include "obscura/render/emission_absorption/emission_absorption_integrator.h"
+#include "obscura/render/path_tracer/path_tracer_integrator.h"
+#include "obscura/render/photon_map/photon_map_integrator.h"
+
+namespace obscura {
+namespace {
+
+template <typename T>
+std::unique_ptr<Integrator> make(const Scene& scene, const FrameSpectra& spectra) {
+  return std::make_unique<T>(scene, spectra);
+}
+
+struct Entry {
+  RenderMethod method;
+  IntegratorFactory factory;
+};
+
+constexpr Entry kRegistry[] = {
+    {RenderMethod::kEmissionAbsorption, &make<EmissionAbsorptionIntegrator>},
+    {RenderMethod::kPathTracer, &make<PathTracerIntegrator>},
+    {RenderMethod::kPhotonMap, &make<PhotonMapIntegrator>},
+};
+
+}  // namespace
+
+IntegratorFactory integrator_factory(RenderMethod method) {
+  for (const Entry& e : kRegistry)
+    if (e.method == method) return e.factory;
+  throw Error("render: no integrator registered for method '" +
+              std::string(render_method_name(method)) + "'");
+}
+
+std::unique_ptr<Integrator> make_integrator(const Scene& scene, const FrameSpectra& spectra) {
+  return integrator_factory(scene.settings.method)(scene, spectra);
+}
+
+}  // namespace obscura

@@ -1,0 +1,22 @@
+#pragma once
+// From a render method to its integrator: one factory per RenderMethod
+// (scene/render_settings.h names them). A new method adds its enum value,
+// its name there and its factory here.
+#include <memory>
+
+#include "obscura/render/integrator.h"
+
+namespace obscura {
+
+using IntegratorFactory = std::unique_ptr<Integrator> (*)(const Scene& scene,
+                                                          const FrameSpectra& spectra);
+
+// The factory of `method`; throws Error for a method without one (a bug).
+IntegratorFactory integrator_factory(RenderMethod method);
+
+// The integrator of scene.settings.method, prepared for the staged scene and
+// `spectra` (photon tracing and the like happen here). The integrator keeps
+// references to both: they must outlive it.
+std::unique_ptr<Integrator> make_integrator(const Scene& scene, const FrameSpectra& spectra);
+
+}  // namespace obscura

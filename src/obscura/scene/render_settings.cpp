@@ -1,0 +1,171 @@
+#include "obscura/scene/render_settings.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <limits>
+
+#include "obscura/io/json_reader.h"
+
+namespace obscura {
+namespace {
+
+struct MethodInfo {
+  RenderMethod method;
+  std::string_view name;
+  bool scatters;
+  bool monte_carlo;
+};
+
+constexpr std::array<MethodInfo, kRenderMethods.size()> kMethodInfo = {{
+    {RenderMethod::kEmissionAbsorption, "emission-absorption", false, false},
+    {RenderMethod::kPathTracer, "path-tracer", true, true},
+    {RenderMethod::kPhotonMap, "photonmap", true, true},
+}};
+
+const MethodInfo& info(RenderMethod method) {
+  for (const MethodInfo& m : kMethodInfo)
+    if (m.method == method) return m;
+  throw Error("render: a method without an entry in kMethodInfo");
+}
+
+// A JSON integer narrowed to int; values beyond int's range saturate, so the
+// range check that follows reports them rather than a wrapped value.
+int saturate_int(long long v) {
+  constexpr long long lo = std::numeric_limits<int>::min(), hi = std::numeric_limits<int>::max();
+  return static_cast<int>(v < lo ? lo : v > hi ? hi : v);
+}
+
+PathTracerSettings::SkySampling parse_sky_sampling(JsonObject& o, const std::string& key,
+                                                   PathTracerSettings::SkySampling fallback) {
+  using S = PathTracerSettings::SkySampling;
+  if (!o.has(key)) return fallback;
+  const std::string v = o.string(key);
+  if (v == "auto") return S::kAuto;
+  if (v == "always") return S::kAlways;
+  if (v == "never") return S::kNever;
+  throw o.error(key, fmt::format("'{}' is not one of auto, always, never", v));
+}
+
+void parse_path_tracer(JsonObject& o, PathTracerSettings& p) {
+  p.russian_roulette_depth =
+      saturate_int(o.integer_or("russian_roulette_depth", p.russian_roulette_depth));
+  p.max_depth = saturate_int(o.integer_or("max_depth", p.max_depth));
+  p.sky_next_event = parse_sky_sampling(o, "sky_next_event", p.sky_next_event);
+  o.finish();
+}
+
+void parse_photon_map(JsonObject& o, PhotonMapSettings& p) {
+  p.photons_per_node = o.integer_or("photons", p.photons_per_node);
+  p.k = saturate_int(o.integer_or("k", p.k));
+  p.max_radius_m = o.number_or("max_radius_m", p.max_radius_m);
+  p.step_m = o.number_or("step_m", p.step_m);
+  p.radius_mean_free_paths = o.number_or("radius_mean_free_paths", p.radius_mean_free_paths);
+  const std::string form = o.string_or("form", p.pure ? "pure" : "hybrid");
+  if (form != "hybrid" && form != "pure")
+    throw o.error("form",
+                  "must be \"hybrid\" (shadow rays for single scattering) or \"pure\" "
+                  "(photons for all scattering, the source paper's form)");
+  p.pure = form == "pure";
+  o.finish();
+}
+
+}  // namespace
+
+std::string_view render_method_name(RenderMethod method) { return info(method).name; }
+
+std::optional<RenderMethod> parse_render_method(std::string_view name) {
+  for (const MethodInfo& m : kMethodInfo)
+    if (m.name == name) return m.method;
+  return std::nullopt;
+}
+
+std::string render_method_names() {
+  std::string names;
+  for (const MethodInfo& m : kMethodInfo)
+    names += (names.empty() ? "" : ", ") + std::string(m.name);
+  return names;
+}
+
+bool method_scatters(RenderMethod method) { return info(method).scatters; }
+bool method_is_monte_carlo(RenderMethod method) { return info(method).monte_carlo; }
+
+void check_render_settings(const RenderSettings& s, const SettingError& error) {
+  auto require = [&](bool ok, std::string_view key, std::string_view what) {
+    if (!ok) throw error(key, what);
+  };
+  require(s.samples_per_pixel >= 1 && s.samples_per_pixel <= 65536, "samples_per_pixel",
+          "must lie in [1, 65536]");
+  require(s.target_relative_stderr >= 0 && s.target_relative_stderr < 1,
+          "target_relative_stderr", "must lie in [0, 1) (0: a fixed sample count)");
+  require(s.max_samples_per_pixel >= 1 && s.max_samples_per_pixel <= 1048576,
+          "max_samples_per_pixel", "must lie in [1, 1048576]");
+  require(s.spectral_nodes_per_band >= 1 && s.spectral_nodes_per_band <= 64,
+          "spectral_nodes_per_band", "must lie in [1, 64]");
+  require(s.relative_tolerance >= 1e-12 && s.relative_tolerance <= 0.1, "relative_tolerance",
+          "must lie in [1e-12, 0.1]");
+  require(s.threads >= 0 && s.threads <= 4096, "threads", "must lie in [0, 4096] (0: all cores)");
+  require(s.target_relative_stderr == 0 || method_is_monte_carlo(s.method),
+          "target_relative_stderr",
+          "applies to the Monte Carlo methods only (set /render/method to \"path-tracer\" or "
+          "\"photonmap\")");
+
+  const PathTracerSettings& pt = s.path_tracer;
+  require(pt.russian_roulette_depth >= 1 && pt.russian_roulette_depth <= 1000,
+          "path_tracer/russian_roulette_depth", "must lie in [1, 1000] bounces");
+  require(pt.max_depth >= 1 && pt.max_depth <= 100000000, "path_tracer/max_depth",
+          "must lie in [1, 1e8] bounces");
+
+  const PhotonMapSettings& pm = s.photon_map;
+  require(pm.photons_per_node >= 1 && pm.photons_per_node <= 2000000000LL, "photon_map/photons",
+          "must lie in [1, 2e9] (photons launched per spectral node)");
+  require(pm.k >= 1 && pm.k <= 4096, "photon_map/k", "must lie in [1, 4096]");
+  auto positive = [&](double v, std::string_view key) {
+    require(v > 0 && std::isfinite(v), key, fmt::format("must be > 0 (got {})", v));
+  };
+  positive(pm.max_radius_m, "photon_map/max_radius_m");
+  positive(pm.step_m, "photon_map/step_m");
+  positive(pm.radius_mean_free_paths, "photon_map/radius_mean_free_paths");
+}
+
+RenderSettings parse_render_settings(JsonObject& r, RenderSettings s) {
+  if (r.has("method")) {
+    const std::string name = r.string("method");
+    const auto method = parse_render_method(name);
+    if (!method)
+      throw r.error("method",
+                    fmt::format("unknown method '{}' (available: {})", name, render_method_names()));
+    s.method = *method;
+  }
+  // A method's own settings are accepted only with that method: anything else
+  // is a scene that does not do what its author thinks.
+  auto method_object = [&](const char* key, RenderMethod method) {
+    auto o = r.optional_object(key);
+    if (o && s.method != method)
+      throw r.error(key, fmt::format("applies to \"method\": \"{}\" only", render_method_name(method)));
+    return o;
+  };
+  if (auto pt = method_object("path_tracer", RenderMethod::kPathTracer))
+    parse_path_tracer(*pt, s.path_tracer);
+  if (auto pm = method_object("photon_map", RenderMethod::kPhotonMap))
+    parse_photon_map(*pm, s.photon_map);
+  s.samples_per_pixel = saturate_int(r.integer_or("samples_per_pixel", s.samples_per_pixel));
+  s.target_relative_stderr = r.number_or("target_relative_stderr", s.target_relative_stderr);
+  s.max_samples_per_pixel =
+      saturate_int(r.integer_or("max_samples_per_pixel", s.max_samples_per_pixel));
+  s.spectral_nodes_per_band =
+      saturate_int(r.integer_or("spectral_nodes_per_band", s.spectral_nodes_per_band));
+  s.relative_tolerance = r.number_or("relative_tolerance", s.relative_tolerance);
+  s.camera_sees_sun = r.boolean_or("camera_sees_sun", s.camera_sees_sun);
+  const long long seed = r.integer_or("seed", static_cast<long long>(s.seed));
+  if (seed < 0) throw r.error("seed", "must be >= 0");
+  s.seed = static_cast<std::uint64_t>(seed);
+  s.threads = saturate_int(r.integer_or("threads", s.threads));
+  r.finish();
+  check_render_settings(s, [&](std::string_view key, std::string_view what) {
+    return InputError(r.file(), r.path() + "/" + std::string(key), std::string(what));
+  });
+  return s;
+}
+
+}  // namespace obscura
