@@ -35,7 +35,13 @@ Band Band::tabulated(std::string name, std::vector<ResponsePoint> table) {
     throw InputError("", field, "response is zero everywhere");
   Band b;
   b.name_ = std::move(name);
-  b.table_ = std::move(table);
+  std::vector<double> wavelengths, responses;
+  for (const ResponsePoint& p : table) {
+    wavelengths.push_back(p.wavelength_um);
+    responses.push_back(p.response);
+  }
+  b.response_ = TabulatedSpectrum(std::move(wavelengths), std::move(responses),
+                                  TabulatedSpectrum::Outside::kZero);
   return b;
 }
 
@@ -76,18 +82,6 @@ Band Band::parse(const std::string& text, const std::string& field) {
   return flat(text, lo, hi);
 }
 
-double Band::response(double wavelength_um) const {
-  if (wavelength_um < table_.front().wavelength_um || wavelength_um > table_.back().wavelength_um)
-    return 0.0;
-  auto it = std::upper_bound(table_.begin(), table_.end(), wavelength_um,
-                             [](double w, const ResponsePoint& p) { return w < p.wavelength_um; });
-  if (it == table_.end()) return table_.back().response;
-  const auto& b = *it;
-  const auto& a = *(it - 1);
-  const double f = (wavelength_um - a.wavelength_um) / (b.wavelength_um - a.wavelength_um);
-  return a.response + f * (b.response - a.response);
-}
-
 void gauss_legendre(int n, std::vector<double>& nodes, std::vector<double>& weights) {
   nodes.assign(n, 0.0);
   weights.assign(n, 0.0);
@@ -123,9 +117,9 @@ BandQuadrature::BandQuadrature(const Band& band, int nodes_per_panel, double max
   if (nodes_per_panel < 1) throw Error("BandQuadrature: nodes_per_panel must be >= 1");
   std::vector<double> gx, gw;
   gauss_legendre(nodes_per_panel, gx, gw);
-  const auto& table = band.table();
-  for (std::size_t i = 0; i + 1 < table.size(); ++i) {
-    const double a = table[i].wavelength_um, b = table[i + 1].wavelength_um;
+  const std::vector<double>& breaks = band.response_table().wavelengths_um();
+  for (std::size_t i = 0; i + 1 < breaks.size(); ++i) {
+    const double a = breaks[i], b = breaks[i + 1];
     int panels = 1;
     if (max_panel_ratio > 1.0 && b / a > max_panel_ratio)
       panels = static_cast<int>(std::ceil(std::log(b / a) / std::log(max_panel_ratio)));

@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "obscura/core/tabulated_spectrum.h"
+
 namespace obscura {
 
 struct ResponsePoint {
@@ -26,14 +28,15 @@ class Band {
   static Band parse(const std::string& text, const std::string& field = "--band");
 
   const std::string& name() const { return name_; }
-  double lo_um() const { return table_.front().wavelength_um; }
-  double hi_um() const { return table_.back().wavelength_um; }
-  const std::vector<ResponsePoint>& table() const { return table_; }
-  double response(double wavelength_um) const;
+  double lo_um() const { return response_.front_um(); }
+  double hi_um() const { return response_.back_um(); }
+  // R(λ) as a table (zero outside it).
+  const TabulatedSpectrum& response_table() const { return response_; }
+  double response(double wavelength_um) const { return response_(wavelength_um); }
 
  private:
   std::string name_;
-  std::vector<ResponsePoint> table_;
+  TabulatedSpectrum response_;
 };
 
 // Composite Gauss–Legendre quadrature over a band: panels between the response

@@ -1,22 +1,15 @@
 #include "obscura/medium/tracking.h"
 
+#include "obscura/core/tabulated_spectrum.h"
+
 #include <algorithm>
 #include <cmath>
 
 namespace obscura {
 
 SpectralLerp SpectralLerp::at(const std::vector<double>& w, double wavelength_um) {
-  SpectralLerp l;
-  if (w.size() <= 1 || wavelength_um <= w.front()) return l;
-  if (wavelength_um >= w.back()) {
-    l.sample0 = l.sample1 = static_cast<int>(w.size()) - 1;
-    return l;
-  }
-  const auto it = std::upper_bound(w.begin(), w.end(), wavelength_um);
-  l.sample1 = static_cast<int>(it - w.begin());
-  l.sample0 = l.sample1 - 1;
-  l.frac = (wavelength_um - w[l.sample0]) / (w[l.sample1] - w[l.sample0]);
-  return l;
+  const WavelengthBracket b = bracket_wavelength(w, wavelength_um);
+  return {static_cast<int>(b.lower), static_cast<int>(b.upper), b.frac};
 }
 
 namespace {

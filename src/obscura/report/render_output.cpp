@@ -41,7 +41,7 @@ std::vector<std::filesystem::path> write_sensor_image(const std::filesystem::pat
       attributes["obscura.units." + n + ".radiance_stderr"] = "W m-2 sr-1";
     }
     attributes["obscura.band." + n] = fmt::format("{}:{} um, {} response points", b.band.lo_um(),
-                                                  b.band.hi_um(), b.band.table().size());
+                                                  b.band.hi_um(), b.band.response_table().size());
   }
   const auto exr = dir / (file_safe_name(image.sensor) + suffix + ".exr");
   write_exr(exr, image.width, image.height, channels, attributes);

@@ -36,6 +36,7 @@ SurfaceMaterial parse_surface_material(JsonObject& o) {
     if (arr.empty())
       throw o.error("emissivity",
                     "the table is empty (expected [[wavelength_um, emissivity], ...])");
+    std::vector<double> wavelengths, values;
     for (std::size_t i = 0; i < arr.size(); ++i) {
       const auto& p = arr[i];
       const std::string at = fmt::format("emissivity/{}", i);
@@ -43,11 +44,13 @@ SurfaceMaterial parse_surface_material(JsonObject& o) {
         throw o.error(at, "expected [wavelength_um, emissivity]");
       const double wl = p[0].get<double>(), e = p[1].get<double>();
       if (!(wl > 0 && std::isfinite(wl))) throw o.error(at, "the wavelength must be > 0 µm");
-      if (!m.emissivity_table.empty() && !(wl > m.emissivity_table.back().first))
+      if (!wavelengths.empty() && !(wl > wavelengths.back()))
         throw o.error(at, "wavelengths must increase strictly");
       if (!(e >= 0 && e <= 1)) throw o.error(at, "the emissivity must lie in [0, 1]");
-      m.emissivity_table.emplace_back(wl, e);
+      wavelengths.push_back(wl);
+      values.push_back(e);
     }
+    m.emissivity_table = TabulatedSpectrum(std::move(wavelengths), std::move(values));
   } else {
     m.emissivity = o.number_or("emissivity", 1.0);
     if (!(m.emissivity >= 0 && m.emissivity <= 1))
@@ -464,23 +467,24 @@ Scene parse_scene(const nlohmann::json& doc, const std::filesystem::path& file) 
       if (sun->has("temperature") || sun->has("total_irradiance"))
         throw sun->error("irradiance_table",
                          "give either irradiance_table or temperature/total_irradiance, not both");
-      s.table_wavelengths_um = table->numbers("wavelengths_um");
-      s.table_irradiance_w_m2_um = table->numbers("irradiance_w_m2_um");
-      if (s.table_wavelengths_um.size() < 2)
+      std::vector<double> wavelengths = table->numbers("wavelengths_um");
+      std::vector<double> irradiance = table->numbers("irradiance_w_m2_um");
+      if (wavelengths.size() < 2)
         throw table->error("wavelengths_um", "needs at least two wavelengths");
-      if (s.table_irradiance_w_m2_um.size() != s.table_wavelengths_um.size())
-        throw table->error(
-            "irradiance_w_m2_um",
-            fmt::format("needs one value per wavelength ({}, got {})",
-                        s.table_wavelengths_um.size(), s.table_irradiance_w_m2_um.size()));
-      for (std::size_t i = 0; i < s.table_wavelengths_um.size(); ++i) {
-        if (!(s.table_wavelengths_um[i] > (i ? s.table_wavelengths_um[i - 1] : 0.0)))
+      if (irradiance.size() != wavelengths.size())
+        throw table->error("irradiance_w_m2_um",
+                           fmt::format("needs one value per wavelength ({}, got {})",
+                                       wavelengths.size(), irradiance.size()));
+      for (std::size_t i = 0; i < wavelengths.size(); ++i) {
+        if (!(wavelengths[i] > (i ? wavelengths[i - 1] : 0.0)))
           throw table->error(fmt::format("wavelengths_um/{}", i),
                              "must be > 0 µm and strictly increasing");
-        if (!(s.table_irradiance_w_m2_um[i] >= 0))
+        if (!(irradiance[i] >= 0))
           throw table->error(fmt::format("irradiance_w_m2_um/{}", i),
                              "must be >= 0 W m-2 um-1 (a negative irradiance is not light)");
       }
+      s.irradiance_table = TabulatedSpectrum(std::move(wavelengths), std::move(irradiance),
+                                             TabulatedSpectrum::Outside::kZero);
       table->finish();
     }
     sun->finish();

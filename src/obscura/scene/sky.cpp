@@ -81,15 +81,14 @@ Sky Sky::zenith_table(std::vector<double> zenith_deg, std::vector<double> wavele
       throw InputError(
           source, fmt::format("radiance/{}", i),
           fmt::format("needs one value per wavelength ({}, got {})", nw, radiance[i].size()));
-    for (std::size_t j = 0; j < nw; ++j) {
+    for (std::size_t j = 0; j < nw; ++j)
       if (!(std::isfinite(radiance[i][j]) && radiance[i][j] >= 0.0))
         throw InputError(source, fmt::format("radiance/{}/{}", i, j),
                          "must be a finite radiance >= 0 W m-2 sr-1 um-1");
-      s.radiance_.push_back(radiance[i][j]);
-    }
+    // Held at the end wavelengths: a table sky has radiance at every wavelength.
+    s.radiance_.emplace_back(wavelengths_um, std::move(radiance[i]));
   }
   s.zenith_deg_ = std::move(zenith_deg);
-  s.wavelengths_um_ = std::move(wavelengths_um);
 
   // Sampling weights per zenith interval: trapezoid of each column's radiance
   // (normalised by the column's largest value) times the interval's solid
@@ -98,13 +97,13 @@ Sky Sky::zenith_table(std::vector<double> zenith_deg, std::vector<double> wavele
   std::vector<double> column_max(nw, 0.0);
   for (std::size_t i = 0; i < nz; ++i)
     for (std::size_t j = 0; j < nw; ++j)
-      column_max[j] = std::max(column_max[j], s.radiance_[i * nw + j]);
+      column_max[j] = std::max(column_max[j], s.radiance_[i].values()[j]);
   s.interval_cdf_.assign(nz, 0.0);
   for (std::size_t i = 0; i + 1 < nz; ++i) {
     double w = 0.0;
     for (std::size_t j = 0; j < nw; ++j)
       if (column_max[j] > 0.0)
-        w += 0.5 * (s.radiance_[i * nw + j] + s.radiance_[(i + 1) * nw + j]) / column_max[j];
+        w += 0.5 * (s.radiance_[i].values()[j] + s.radiance_[i + 1].values()[j]) / column_max[j];
     const double solid =
         std::cos(s.zenith_deg_[i] * kDegToRad) - std::cos(s.zenith_deg_[i + 1] * kDegToRad);
     s.interval_cdf_[i + 1] = s.interval_cdf_[i] + w * solid;
@@ -117,7 +116,7 @@ Sky Sky::zenith_table(std::vector<double> zenith_deg, std::vector<double> wavele
   // angles and at the kernel's kinks μ = ±sin θ_n, so every piece is smooth.
   std::vector<double> gl_x, gl_w;
   gauss_legendre(16, gl_x, gl_w);
-  s.reflected_.assign(kNormalZ * nw, 0.0);
+  std::vector<double> reflected(static_cast<std::size_t>(kNormalZ) * nw, 0.0);
   for (int k = 0; k < kNormalZ; ++k) {
     const double n_z = -1.0 + 2.0 * k / (kNormalZ - 1);
     const double sin_n = std::sqrt(std::max(0.0, 1.0 - n_z * n_z));
@@ -134,10 +133,14 @@ Sky Sky::zenith_table(std::vector<double> zenith_deg, std::vector<double> wavele
         const double weight = 0.5 * (hi - lo) * gl_w[q] * kernel / std::numbers::pi;
         if (weight == 0.0) continue;
         for (std::size_t j = 0; j < nw; ++j)
-          s.reflected_[k * nw + j] += weight * s.table_radiance(mu, s.wavelengths_um_[j]);
+          reflected[k * nw + j] += weight * s.table_radiance(mu, wavelengths_um[j]);
       }
     }
   }
+  for (int k = 0; k < kNormalZ; ++k)
+    s.reflected_.emplace_back(
+        wavelengths_um, std::vector<double>(reflected.begin() + k * nw,
+                                            reflected.begin() + (k + 1) * nw));
   return s;
 }
 
@@ -147,16 +150,7 @@ double Sky::table_radiance(double cos_zenith, double wavelength_um) const {
   const std::size_t i = interval_of(zenith_deg_, zenith);
   const double fz =
       std::clamp((zenith - zenith_deg_[i]) / (zenith_deg_[i + 1] - zenith_deg_[i]), 0.0, 1.0);
-  const std::size_t nw = wavelengths_um_.size();
-  auto at = [&](std::size_t row) {
-    if (nw == 1) return radiance_[row];
-    const double lambda =
-        std::clamp(wavelength_um, wavelengths_um_.front(), wavelengths_um_.back());
-    const std::size_t j = interval_of(wavelengths_um_, lambda);
-    const double fw = (lambda - wavelengths_um_[j]) / (wavelengths_um_[j + 1] - wavelengths_um_[j]);
-    return (1 - fw) * radiance_[row * nw + j] + fw * radiance_[row * nw + j + 1];
-  };
-  return (1 - fz) * at(i) + fz * at(i + 1);
+  return (1 - fz) * radiance_[i](wavelength_um) + fz * radiance_[i + 1](wavelength_um);
 }
 
 double Sky::radiance(const Vec3& toward_sky, double wavelength_um) const {
@@ -181,20 +175,10 @@ double Sky::cosine_weighted_mean(const Vec3& normal, double wavelength_um) const
       return below_horizon_ ? b : b * 0.5 * (1.0 + std::clamp(normal.z, -1.0, 1.0));
     }
     case Kind::kTable: {
-      const std::size_t nw = wavelengths_um_.size();
       const double x = (std::clamp(normal.z, -1.0, 1.0) + 1.0) * 0.5 * (kNormalZ - 1);
       const int k = std::min(static_cast<int>(x), kNormalZ - 2);
       const double fk = x - k;
-      auto at = [&](int row) {
-        if (nw == 1) return reflected_[row];
-        const double lambda =
-            std::clamp(wavelength_um, wavelengths_um_.front(), wavelengths_um_.back());
-        const std::size_t j = interval_of(wavelengths_um_, lambda);
-        const double fw =
-            (lambda - wavelengths_um_[j]) / (wavelengths_um_[j + 1] - wavelengths_um_[j]);
-        return (1 - fw) * reflected_[row * nw + j] + fw * reflected_[row * nw + j + 1];
-      };
-      return (1 - fk) * at(k) + fk * at(k + 1);
+      return (1 - fk) * reflected_[k](wavelength_um) + fk * reflected_[k + 1](wavelength_um);
     }
   }
   return 0.0;

@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "obscura/core/tabulated_spectrum.h"
 #include "obscura/core/vec3.h"
 
 namespace obscura {
@@ -61,12 +62,12 @@ class Sky {
   double temperature_k_ = 0.0;
   bool below_horizon_ = true;
   // Table form.
-  std::vector<double> zenith_deg_, wavelengths_um_;
-  std::vector<double> radiance_;  // zenith-major, |zenith| × |wavelengths|
+  std::vector<double> zenith_deg_;
+  std::vector<TabulatedSpectrum> radiance_;  // the spectrum at each zenith angle
   // Sampling: zenith intervals [zenith_i, zenith_i+1] chosen with cdf_.
   std::vector<double> interval_cdf_;
-  // Reflected-radiance table: kNormalZ values of n_z from −1 to 1 × wavelengths.
-  std::vector<double> reflected_;
+  // Reflected radiance: the spectrum at kNormalZ values of n_z from −1 to 1.
+  std::vector<TabulatedSpectrum> reflected_;
 };
 
 }  // namespace obscura

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "obscura/core/planck.h"
+#include "obscura/core/tabulated_spectrum.h"
 #include "obscura/core/vec3.h"
 
 namespace obscura {
@@ -21,9 +22,9 @@ struct Sun {
   double angular_diameter_deg = 0.533;
   double temperature_k = 5778.0;          // blackbody shape of the spectrum
   double total_irradiance_w_m2 = 1361.0;  // ∫ E_λ dλ
-  // User spectrum (empty: the blackbody above), strictly increasing wavelengths.
-  std::vector<double> table_wavelengths_um;
-  std::vector<double> table_irradiance_w_m2_um;
+  // User spectrum, W m⁻² µm⁻¹, zero outside its wavelengths (empty: the
+  // blackbody above).
+  TabulatedSpectrum irradiance_table;
 
   // Unit vector pointing from the scene towards the sun.
   Vec3 direction() const {
@@ -43,20 +44,10 @@ struct Sun {
   // Spectral irradiance, W m⁻² µm⁻¹: π B_λ(T) scaled to the total irradiance
   // (σ T⁴ is the blackbody's total exitance, π ∫ B_λ dλ).
   double irradiance(double wavelength_um) const {
-    if (!table_wavelengths_um.empty()) return table_irradiance(wavelength_um);
+    if (!irradiance_table.empty()) return irradiance_table(wavelength_um);
     const double exitance = kStefanBoltzmann * std::pow(temperature_k, 4);
     return std::numbers::pi * planck_radiance(wavelength_um, temperature_k) *
            (total_irradiance_w_m2 / exitance);
-  }
-  double table_irradiance(double wavelength_um) const {
-    const auto& w = table_wavelengths_um;
-    if (!(wavelength_um >= w.front() && wavelength_um <= w.back())) return 0.0;
-    const std::size_t i =
-        std::min<std::size_t>(std::upper_bound(w.begin(), w.end(), wavelength_um) - w.begin(),
-                              w.size() - 1) -
-        1;
-    const double f = (wavelength_um - w[i]) / (w[i + 1] - w[i]);
-    return (1 - f) * table_irradiance_w_m2_um[i] + f * table_irradiance_w_m2_um[i + 1];
   }
   // Radiance of the disc, W m⁻² sr⁻¹ µm⁻¹.
   double radiance(double wavelength_um) const {

@@ -5,16 +5,16 @@
 
 namespace obscura {
 
-double SurfaceMaterial::emissivity_at(double wavelength_um) const {
-  const auto& t = emissivity_table;
-  if (t.empty()) return emissivity;
-  if (wavelength_um <= t.front().first) return t.front().second;
-  if (wavelength_um >= t.back().first) return t.back().second;
-  const auto hi = std::upper_bound(t.begin(), t.end(), wavelength_um,
-                                   [](double w, const auto& p) { return w < p.first; });
-  const auto lo = hi - 1;
-  const double f = (wavelength_um - lo->first) / (hi->first - lo->first);
-  return lo->second + f * (hi->second - lo->second);
+SurfaceMaterial::SurfaceMaterial(double temperature, double grey_emissivity,
+                                 const std::vector<std::pair<double, double>>& table)
+    : temperature_k(temperature), emissivity(grey_emissivity) {
+  if (table.empty()) return;
+  std::vector<double> wavelengths, values;
+  for (const auto& [w, e] : table) {
+    wavelengths.push_back(w);
+    values.push_back(e);
+  }
+  emissivity_table = TabulatedSpectrum(std::move(wavelengths), std::move(values));
 }
 
 bool GroundPlane::intersect(const Ray& ray, double t_min, double t_max, SurfaceHit& hit) const {

@@ -10,25 +10,26 @@
 #include <vector>
 
 #include "obscura/core/bbox.h"
+#include "obscura/core/tabulated_spectrum.h"
 #include "obscura/core/ray.h"
 
 namespace obscura {
 
 struct SurfaceMaterial {
   SurfaceMaterial() = default;
+  // `table`: (wavelength µm, ε) points, as emissivity_table below.
   SurfaceMaterial(double temperature, double grey_emissivity,
-                  std::vector<std::pair<double, double>> table = {})
-      : temperature_k(temperature),
-        emissivity(grey_emissivity),
-        emissivity_table(std::move(table)) {}
+                  const std::vector<std::pair<double, double>>& table = {});
 
   double temperature_k = 0.0;
   double emissivity = 1.0;  // in [0, 1]; used where emissivity_table is empty
-  // (wavelength µm, ε) points, wavelengths strictly increasing, ε in [0, 1]:
-  // linear between points, held constant beyond the first and the last.
-  std::vector<std::pair<double, double>> emissivity_table;
+  // ε(λ), wavelengths strictly increasing, ε in [0, 1]: linear between
+  // points, held constant beyond the first and the last.
+  TabulatedSpectrum emissivity_table;
 
-  double emissivity_at(double wavelength_um) const;
+  double emissivity_at(double wavelength_um) const {
+    return emissivity_table.empty() ? emissivity : emissivity_table(wavelength_um);
+  }
   double reflectance_at(double wavelength_um) const { return 1.0 - emissivity_at(wavelength_um); }
 };
 

@@ -1,0 +1,87 @@
+// The render settings: parsed and range-checked in one place
+// (scene/render_settings.h), every method's own settings reachable from a
+// scene file, and every method name known to the registry of integrators.
+#include "obscura/scene/render_settings.h"
+
+#include <gtest/gtest.h>
+
+#include "obscura/io/json_reader.h"
+#include "obscura/render/integrator_registry.h"
+#include "support/input_error.h"
+
+namespace obscura {
+namespace {
+
+RenderSettings parse(const nlohmann::json& render) {
+  JsonObject o(render, "scene.json", "/render");
+  return parse_render_settings(o);
+}
+
+InputError parse_error(const nlohmann::json& render) {
+  return testing::expect_input_error([&] { parse(render); });
+}
+
+TEST(RenderSettings, EveryMethodHasANameThatParsesBackAndAnIntegrator) {
+  for (const RenderMethod m : kRenderMethods) {
+    EXPECT_EQ(parse_render_method(render_method_name(m)), m);
+    EXPECT_NO_THROW(integrator_factory(m)) << render_method_name(m);
+  }
+  EXPECT_FALSE(parse_render_method("magic"));
+  EXPECT_EQ(render_method_names(), "emission-absorption, path-tracer, photonmap");
+  EXPECT_FALSE(method_scatters(RenderMethod::kEmissionAbsorption));
+  EXPECT_TRUE(method_is_monte_carlo(RenderMethod::kPhotonMap));
+}
+
+TEST(RenderSettings, PathTracerSettingsComeFromTheSceneFile) {
+  const RenderSettings s = parse({{"method", "path-tracer"},
+                                  {"camera_sees_sun", false},
+                                  {"path_tracer",
+                                   {{"russian_roulette_depth", 7},
+                                    {"max_depth", 500},
+                                    {"sky_next_event", "always"}}}});
+  EXPECT_EQ(s.method, RenderMethod::kPathTracer);
+  EXPECT_FALSE(s.camera_sees_sun);
+  EXPECT_EQ(s.path_tracer.russian_roulette_depth, 7);
+  EXPECT_EQ(s.path_tracer.max_depth, 500);
+  EXPECT_EQ(s.path_tracer.sky_next_event, PathTracerSettings::SkySampling::kAlways);
+}
+
+TEST(RenderSettings, ErrorsNameTheJsonPath) {
+  InputError e = parse_error({{"method", "path-tracer"}, {"path_tracer", {{"sky_next_event", "often"}}}});
+  EXPECT_EQ(e.field(), "/render/path_tracer/sky_next_event");
+  e = parse_error({{"method", "path-tracer"}, {"path_tracer", {{"russian_roulette_depth", 0}}}});
+  EXPECT_EQ(e.field(), "/render/path_tracer/russian_roulette_depth");
+  e = parse_error({{"method", "path-tracer"}, {"path_tracer", {{"depth", 3}}}});
+  EXPECT_TRUE(testing::contains(e.what(), "depth")) << e.what();  // unknown key
+  e = parse_error({{"method", "photonmap"}, {"path_tracer", nlohmann::json::object()}});
+  EXPECT_EQ(e.field(), "/render/path_tracer");  // another method's settings
+  e = parse_error({{"method", "photonmap"}, {"photon_map", {{"k", 99999999999LL}}}});
+  EXPECT_EQ(e.field(), "/render/photon_map/k");  // saturated, not wrapped
+  EXPECT_TRUE(testing::contains(e.detail(), "[1, 4096]")) << e.what();
+  e = parse_error({{"target_relative_stderr", 0.01}});  // emission–absorption
+  EXPECT_EQ(e.field(), "/render/target_relative_stderr");
+  e = parse_error({{"samples_per_pixel", -5}});
+  EXPECT_EQ(e.field(), "/render/samples_per_pixel");
+  e = parse_error({{"method", "magic"}});
+  EXPECT_TRUE(testing::contains(e.detail(), render_method_names())) << e.what();
+}
+
+// The command line names its own options: the same checks, another namer.
+TEST(RenderSettings, OneCheckForTheSceneFileAndTheCommandLine) {
+  RenderSettings s;
+  s.method = RenderMethod::kPhotonMap;
+  s.photon_map.step_m = 0.0;
+  const InputError e = testing::expect_input_error([&] {
+    check_render_settings(s, [](std::string_view key, std::string_view what) {
+      return InputError("", key == "photon_map/step_m" ? "--step" : std::string(key),
+                        std::string(what));
+    });
+  });
+  EXPECT_EQ(e.field(), "--step");
+  EXPECT_NO_THROW(check_render_settings(RenderSettings{}, [](auto, auto) {
+    return InputError("", "", "");
+  }));
+}
+
+}  // namespace
+}  // namespace obscura
