@@ -130,9 +130,9 @@ INSTANTIATE_TEST_SUITE_P(
                       RoundTripCase{VtkEncoding::kBinary, VtkDataLocation::kPoints},
                       RoundTripCase{VtkEncoding::kAscii, VtkDataLocation::kCells},
                       RoundTripCase{VtkEncoding::kBinary, VtkDataLocation::kCells}),
-    [](const auto& info) {
-      return std::string(info.param.encoding == VtkEncoding::kAscii ? "Ascii" : "Binary") +
-             (info.param.location == VtkDataLocation::kPoints ? "Points" : "Cells");
+    [](const auto& test) {
+      return std::string(test.param.encoding == VtkEncoding::kAscii ? "Ascii" : "Binary") +
+             (test.param.location == VtkDataLocation::kPoints ? "Points" : "Cells");
     });
 
 TEST_F(VtkStructuredPointsTest, BinaryIsBigEndianFloat) {

@@ -55,8 +55,8 @@ TEST_P(EveryIntegrator, SolvesTheClosedFormCases) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Integrators, EveryIntegrator, ::testing::ValuesIn(kRenderMethods),
-                         [](const ::testing::TestParamInfo<RenderMethod>& info) {
-                           std::string name(render_method_name(info.param));
+                         [](const ::testing::TestParamInfo<RenderMethod>& test) {
+                           std::string name(render_method_name(test.param));
                            for (char& c : name)
                              if (c == '-') c = '_';
                            return name;

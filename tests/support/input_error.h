@@ -35,7 +35,9 @@ inline void expect_file_error(const std::filesystem::path& path, const std::stri
   std::ofstream(path, std::ios::binary) << text;
   const InputError e = expect_input_error([&] { read(path); });
   EXPECT_EQ(e.file(), path.string());
-  if (!field.empty()) EXPECT_EQ(e.field(), field) << e.what();
+  if (!field.empty()) {
+    EXPECT_EQ(e.field(), field) << e.what();
+  }
   EXPECT_TRUE(contains(e.detail(), detail)) << e.what();
 }
 
