@@ -29,8 +29,7 @@ class ProgressPrinter {
     const double interval = tty_ ? 0.25 : 5.0;
     if (p.rows_done != p.rows_total && elapsed - last_ < interval) return;
     last_ = elapsed;
-    const double eta =
-        p.rows_done > 0 ? elapsed * (p.rows_total - p.rows_done) / p.rows_done : 0.0;
+    const double eta = p.rows_done > 0 ? elapsed * (p.rows_total - p.rows_done) / p.rows_done : 0.0;
     std::cerr << fmt::format("{}render {}: {:5.1f}% ({}/{} rows, {:.1f} s, ~{:.0f} s left){}",
                              tty_ ? "\r" : "", label_, 100.0 * p.rows_done / p.rows_total,
                              p.rows_done, p.rows_total, elapsed, eta, tty_ ? "" : "\n");

@@ -23,10 +23,11 @@ Command add_radiance_command(CLI::App& app) {
     bool json = false;
   };
   auto o = std::make_shared<Options>();
-  auto* t = cmd->add_option("--temperature", o->temperature, "Blackbody temperature, K");
-  auto* l =
+  auto* temperature_option =
+      cmd->add_option("--temperature", o->temperature, "Blackbody temperature, K");
+  auto* radiance_option =
       cmd->add_option("--band-radiance", o->band_radiance, "Band radiance to invert, W m-2 sr-1");
-  t->excludes(l);
+  temperature_option->excludes(radiance_option);
   cmd->add_option("--band", o->band,
                   "Band as LO:HI in micrometres (flat response) or a preset: visible, laser1064, "
                   "mwir, lwir")

@@ -1,5 +1,4 @@
 #include "obscura/render/renderer.h"
-#include "support/render_helpers.h"
 
 #include <gtest/gtest.h>
 
@@ -9,6 +8,7 @@
 #include "obscura/core/planck.h"
 #include "obscura/medium/grid_medium.h"
 #include "obscura/medium/homogeneous_medium.h"
+#include "support/render_helpers.h"
 
 namespace obscura {
 namespace {

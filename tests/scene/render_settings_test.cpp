@@ -33,12 +33,11 @@ TEST(RenderSettings, EveryMethodHasANameThatParsesBackAndAnIntegrator) {
 }
 
 TEST(RenderSettings, PathTracerSettingsComeFromTheSceneFile) {
-  const RenderSettings s = parse({{"method", "path-tracer"},
-                                  {"camera_sees_sun", false},
-                                  {"path_tracer",
-                                   {{"russian_roulette_depth", 7},
-                                    {"max_depth", 500},
-                                    {"sky_next_event", "always"}}}});
+  const RenderSettings s =
+      parse({{"method", "path-tracer"},
+             {"camera_sees_sun", false},
+             {"path_tracer",
+              {{"russian_roulette_depth", 7}, {"max_depth", 500}, {"sky_next_event", "always"}}}});
   EXPECT_EQ(s.method, RenderMethod::kPathTracer);
   EXPECT_FALSE(s.camera_sees_sun);
   EXPECT_EQ(s.path_tracer.russian_roulette_depth, 7);
@@ -47,7 +46,8 @@ TEST(RenderSettings, PathTracerSettingsComeFromTheSceneFile) {
 }
 
 TEST(RenderSettings, ErrorsNameTheJsonPath) {
-  InputError e = parse_error({{"method", "path-tracer"}, {"path_tracer", {{"sky_next_event", "often"}}}});
+  InputError e =
+      parse_error({{"method", "path-tracer"}, {"path_tracer", {{"sky_next_event", "often"}}}});
   EXPECT_EQ(e.field(), "/render/path_tracer/sky_next_event");
   e = parse_error({{"method", "path-tracer"}, {"path_tracer", {{"russian_roulette_depth", 0}}}});
   EXPECT_EQ(e.field(), "/render/path_tracer/russian_roulette_depth");
@@ -78,9 +78,8 @@ TEST(RenderSettings, OneCheckForTheSceneFileAndTheCommandLine) {
     });
   });
   EXPECT_EQ(e.field(), "--step");
-  EXPECT_NO_THROW(check_render_settings(RenderSettings{}, [](auto, auto) {
-    return InputError("", "", "");
-  }));
+  EXPECT_NO_THROW(
+      check_render_settings(RenderSettings{}, [](auto, auto) { return InputError("", "", ""); }));
 }
 
 }  // namespace

@@ -26,9 +26,8 @@ Scene test_scene() {
     scene.sensors.push_back(s);
   }
   scene.static_clouds.push_back(std::make_shared<HomogeneousMedium>(
-      BBox3({-1, -8, 0}, {1, -6, 2}), std::vector<double>{4.0, 10.0},
-      std::vector<double>{0.5, 0.5}, std::vector<double>{0.0, 0.0},
-      std::vector<double>{0.0, 0.0}, 300.0));
+      BBox3({-1, -8, 0}, {1, -6, 2}), std::vector<double>{4.0, 10.0}, std::vector<double>{0.5, 0.5},
+      std::vector<double>{0.0, 0.0}, std::vector<double>{0.0, 0.0}, 300.0));
   scene.surfaces.push_back(std::make_unique<GroundPlane>("ground", SurfaceMaterial{288, 0.9}, 0.0));
   auto target = std::make_unique<BoxSurface>("target", SurfaceMaterial{330, 0.9},
                                              BBox3({-2, 0, 0}, {2, 2, 2}));

@@ -22,17 +22,17 @@ class InternalError : public Error {
 
 }  // namespace obscura
 
-#define OBSCURA_CHECK(condition)                                             \
-  do {                                                                       \
-    if (!(condition)) [[unlikely]]                                           \
-      ::obscura::fail_check(__FILE__, __LINE__, #condition, std::string());  \
+#define OBSCURA_CHECK(condition)                                            \
+  do {                                                                      \
+    if (!(condition)) [[unlikely]]                                          \
+      ::obscura::fail_check(__FILE__, __LINE__, #condition, std::string()); \
   } while (false)
 
 // The same with a message (anything convertible to std::string).
-#define OBSCURA_CHECK_MSG(condition, message)                             \
-  do {                                                                    \
-    if (!(condition)) [[unlikely]]                                        \
-      ::obscura::fail_check(__FILE__, __LINE__, #condition, (message));   \
+#define OBSCURA_CHECK_MSG(condition, message)                           \
+  do {                                                                  \
+    if (!(condition)) [[unlikely]]                                      \
+      ::obscura::fail_check(__FILE__, __LINE__, #condition, (message)); \
   } while (false)
 
 #ifdef NDEBUG

@@ -15,15 +15,15 @@ WavelengthBracket bracket_wavelength(const std::vector<double>& w, double wavele
     b.lower = b.upper = w.size() - 1;
     return b;
   }
-  b.upper = static_cast<std::size_t>(std::upper_bound(w.begin(), w.end(), wavelength_um) -
-                                     w.begin());
+  b.upper =
+      static_cast<std::size_t>(std::upper_bound(w.begin(), w.end(), wavelength_um) - w.begin());
   b.lower = b.upper - 1;
   b.frac = (wavelength_um - w[b.lower]) / (w[b.upper] - w[b.lower]);
   return b;
 }
 
-TabulatedSpectrum::TabulatedSpectrum(std::vector<double> wavelengths_um,
-                                     std::vector<double> values, Outside outside)
+TabulatedSpectrum::TabulatedSpectrum(std::vector<double> wavelengths_um, std::vector<double> values,
+                                     Outside outside)
     : wavelengths_um_(std::move(wavelengths_um)), values_(std::move(values)), outside_(outside) {
   if (wavelengths_um_.empty()) throw Error("tabulated spectrum: no rows");
   if (values_.size() != wavelengths_um_.size())

@@ -1,9 +1,9 @@
 #include "obscura/medium/tracking.h"
 
-#include "obscura/core/tabulated_spectrum.h"
-
 #include <algorithm>
 #include <cmath>
+
+#include "obscura/core/tabulated_spectrum.h"
 
 namespace obscura {
 

@@ -10,9 +10,9 @@
 // to exactly the grid voxelise gives.
 #include <string>
 
+#include "obscura/medium/concentration_series.h"
 #include "obscura/medium/species_optics.h"
 #include "obscura/medium/voxel_grid.h"
-#include "obscura/medium/concentration_series.h"
 
 namespace obscura {
 

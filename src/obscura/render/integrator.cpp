@@ -5,8 +5,8 @@ namespace obscura {
 CameraRay find_camera_ray_hit(const Scene& scene, const Ray& ray) {
   CameraRay c;
   c.ray = ray;
-  c.on_surface = intersect_surfaces(scene.surfaces, ray, 0.0,
-                                    std::numeric_limits<double>::infinity(), c.hit);
+  c.on_surface =
+      intersect_surfaces(scene.surfaces, ray, 0.0, std::numeric_limits<double>::infinity(), c.hit);
   return c;
 }
 

@@ -45,7 +45,8 @@ struct AirPath {
 double air_path_m(const Scene& scene, const CameraRay& camera) {
   if (camera.on_surface) return camera.hit.t;
   double t0 = 0.0, t1 = std::numeric_limits<double>::infinity();
-  if (scene.atmosphere.enabled && scene.medium && scene.medium->bounds().intersect(camera.ray, t0, t1))
+  if (scene.atmosphere.enabled && scene.medium &&
+      scene.medium->bounds().intersect(camera.ray, t0, t1))
     return t1;
   return 0.0;
 }
@@ -80,8 +81,8 @@ struct SensorRender {
     NodeArray radiance, transmittance;
     for (std::size_t b = 0; b < bands.size(); ++b) {
       const SpectralNodes& nodes = bands[b];
-      integrator.band_radiance(camera, sensor_index, static_cast<int>(b), rng, ws,
-                               radiance.data(), transmittance.data());
+      integrator.band_radiance(camera, sensor_index, static_cast<int>(b), rng, ws, radiance.data(),
+                               transmittance.data());
       double band_l = 0, band_t = 0;
       for (std::size_t i = 0; i < nodes.size(); ++i) {
         band_l += nodes.nodes()[i].weight_um * radiance[i];
@@ -121,7 +122,8 @@ struct SensorRender {
       more = false;
       if (monte_carlo && target > 0.0 && n + spp <= max_spp)
         for (std::size_t b = 0; b < sums.l.size(); ++b)
-          more = more || standard_error(sums.l[b], sums.l2[b], n) > target * std::abs(sums.l[b] / n);
+          more =
+              more || standard_error(sums.l[b], sums.l2[b], n) > target * std::abs(sums.l[b] / n);
     }
     return n;
   }
@@ -152,8 +154,8 @@ SensorImage render(const Scene& scene, const Sensor& sensor, int sensor_index,
                    const RenderOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   const bool monte_carlo = method_is_monte_carlo(integrator.method());
-  const SensorRender job{scene, sensor, integrator, bands, sensor_index,
-                            AirPath(scene, sensor, bands), monte_carlo};
+  const SensorRender job{
+      scene, sensor, integrator, bands, sensor_index, AirPath(scene, sensor, bands), monte_carlo};
   SensorImage image = empty_image(sensor, monte_carlo);
   const int width = image.width, height = image.height;
   std::atomic<std::uint64_t> segments{0}, evals{0}, samples_taken{0};

@@ -10,8 +10,8 @@
 #include <utility>
 
 #include "obscura/core/error.h"
-#include "obscura/report/cairo_canvas.h"
 #include "obscura/io/png_file.h"
+#include "obscura/report/cairo_canvas.h"
 
 namespace obscura {
 namespace {

@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "obscura/io/provenance.h"
 #include "obscura/film/sensor_image.h"
+#include "obscura/io/provenance.h"
 
 namespace obscura {
 

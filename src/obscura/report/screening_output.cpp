@@ -10,8 +10,8 @@
 #include <map>
 #include <optional>
 
-#include "obscura/report/line_plot.h"
 #include "obscura/io/png_file.h"
+#include "obscura/report/line_plot.h"
 
 namespace obscura {
 namespace {

@@ -76,8 +76,7 @@ void scale_radiance_rows(ContactSheet& sheet) {
         if (std::isfinite(v)) values.push_back(v);
     if (values.empty()) continue;
     std::sort(values.begin(), values.end());
-    const double lo = percentile_of_sorted(values, 0.005),
-                 hi = percentile_of_sorted(values, 0.995);
+    const double lo = percentile_of_sorted(values, 0.005), hi = percentile_of_sorted(values, 0.995);
     if (hi > lo) {
       row.min = lo;
       row.max = hi;
@@ -179,12 +178,12 @@ void SequenceWriter::write_metrics(const SequenceResult& result) {
   const MetricsSettings& settings = scene_.metrics;
   write_text_file_atomic(dir_ / "metrics.csv", screening_metrics_csv(result.metrics));
   written_.push_back(dir_ / "metrics.csv");
-  write_text_file_atomic(dir_ / "metrics.json",
-                         screening_metrics_json(provenance_.to_json(), settings,
-                                                result.reference_time_s, result.masks,
-                                                result.metrics, result.series)
-                                 .dump(2) +
-                             "\n");
+  write_text_file_atomic(
+      dir_ / "metrics.json",
+      screening_metrics_json(provenance_.to_json(), settings, result.reference_time_s, result.masks,
+                             result.metrics, result.series)
+              .dump(2) +
+          "\n");
   written_.push_back(dir_ / "metrics.json");
   metrics_text_ = screening_summary_text(result.series, settings, result.reference_time_s);
   if (sequence_) {

@@ -14,10 +14,9 @@
 // finish(). Every file goes through an AtomicFile (temporary name, rename).
 #include <cstddef>
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "obscura/io/provenance.h"
 #include "obscura/report/contact_sheet.h"

@@ -29,8 +29,8 @@
 #include <string>
 #include <vector>
 
-#include "obscura/scene/surface.h"
 #include "obscura/core/triangle_mesh.h"
+#include "obscura/scene/surface.h"
 
 struct RTCSceneTy;  // Embree's scene handle (embree3/rtcore_scene.h)
 

@@ -96,8 +96,8 @@ void check_render_settings(const RenderSettings& s, const SettingError& error) {
   };
   require(s.samples_per_pixel >= 1 && s.samples_per_pixel <= 65536, "samples_per_pixel",
           "must lie in [1, 65536]");
-  require(s.target_relative_stderr >= 0 && s.target_relative_stderr < 1,
-          "target_relative_stderr", "must lie in [0, 1) (0: a fixed sample count)");
+  require(s.target_relative_stderr >= 0 && s.target_relative_stderr < 1, "target_relative_stderr",
+          "must lie in [0, 1) (0: a fixed sample count)");
   require(s.max_samples_per_pixel >= 1 && s.max_samples_per_pixel <= 1048576,
           "max_samples_per_pixel", "must lie in [1, 1048576]");
   require(s.spectral_nodes_per_band >= 1 && s.spectral_nodes_per_band <= 64,
@@ -133,8 +133,8 @@ RenderSettings parse_render_settings(JsonObject& r, RenderSettings s) {
     const std::string name = r.string("method");
     const auto method = parse_render_method(name);
     if (!method)
-      throw r.error("method",
-                    fmt::format("unknown method '{}' (available: {})", name, render_method_names()));
+      throw r.error("method", fmt::format("unknown method '{}' (available: {})", name,
+                                          render_method_names()));
     s.method = *method;
   }
   // A method's own settings are accepted only with that method: anything else
@@ -142,7 +142,8 @@ RenderSettings parse_render_settings(JsonObject& r, RenderSettings s) {
   auto method_object = [&](const char* key, RenderMethod method) {
     auto o = r.optional_object(key);
     if (o && s.method != method)
-      throw r.error(key, fmt::format("applies to \"method\": \"{}\" only", render_method_name(method)));
+      throw r.error(key,
+                    fmt::format("applies to \"method\": \"{}\" only", render_method_name(method)));
     return o;
   };
   if (auto pt = method_object("path_tracer", RenderMethod::kPathTracer))

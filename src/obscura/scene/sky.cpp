@@ -139,8 +139,8 @@ Sky Sky::zenith_table(std::vector<double> zenith_deg, std::vector<double> wavele
   }
   for (int k = 0; k < kNormalZ; ++k)
     s.reflected_.emplace_back(
-        wavelengths_um, std::vector<double>(reflected.begin() + k * nw,
-                                            reflected.begin() + (k + 1) * nw));
+        wavelengths_um,
+        std::vector<double>(reflected.begin() + k * nw, reflected.begin() + (k + 1) * nw));
   return s;
 }
 

@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "obscura/core/bbox.h"
-#include "obscura/core/tabulated_spectrum.h"
 #include "obscura/core/ray.h"
+#include "obscura/core/tabulated_spectrum.h"
 
 namespace obscura {
 

@@ -37,7 +37,9 @@ SensorFrameStats frame_stats(const SensorImage& image, double time_s, double sta
 }  // namespace
 
 std::vector<double> parse_time_range(const std::string& text, const std::string& field) {
-  auto bad = [&](const std::string& why) { return InputError("", field, fmt::format(fmt::runtime(why), text)); };
+  auto bad = [&](const std::string& why) {
+    return InputError("", field, fmt::format(fmt::runtime(why), text));
+  };
   std::vector<double> v;
   std::size_t pos = 0;
   for (int i = 0; i < 3; ++i) {
@@ -73,7 +75,7 @@ std::vector<TargetMask> scene_target_masks(const Scene& scene) {
 }
 
 RenderedFrame render_frame(const Scene& scene, std::size_t index, std::size_t frames,
-                   const std::function<void(const RenderProgress&)>& progress) {
+                           const std::function<void(const RenderProgress&)>& progress) {
   RenderedFrame frame;
   frame.index = index;
   frame.time_s = scene.time_s;
@@ -85,7 +87,8 @@ RenderedFrame render_frame(const Scene& scene, std::size_t index, std::size_t fr
       options.progress = [&](int done, int total) {
         progress({index, frames, scene.time_s, static_cast<int>(s), done, total});
       };
-    frame.images.push_back(render_sensor(scene, static_cast<int>(s), *integrator, spectra, options));
+    frame.images.push_back(
+        render_sensor(scene, static_cast<int>(s), *integrator, spectra, options));
   }
   return frame;
 }

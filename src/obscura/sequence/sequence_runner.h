@@ -41,7 +41,7 @@ struct TimeSeriesRow {
 struct RenderedFrame {
   std::size_t index = 0;  // in the sequence
   double time_s = 0;
-  double staging_seconds = 0;  // staging the clouds at time_s, shared by the sensors
+  double staging_seconds = 0;       // staging the clouds at time_s, shared by the sensors
   std::vector<SensorImage> images;  // one per scene sensor, in scene order
 };
 
@@ -54,7 +54,7 @@ struct SensorFrameStats {
   double staging_seconds = 0;
   struct BandFigures {
     Band band;
-    double mean_radiance = 0;      // W m⁻² sr⁻¹, over the image
+    double mean_radiance = 0;       // W m⁻² sr⁻¹, over the image
     double mean_transmittance = 0;  // 1
     double min_apparent_temperature_k = 0, max_apparent_temperature_k = 0;
   };
@@ -100,6 +100,6 @@ SequenceResult render_sequence(Scene& scene, const std::vector<double>& times_s,
 
 // One frame of the staged scene: every sensor through one prepared integrator.
 RenderedFrame render_frame(const Scene& scene, std::size_t index = 0, std::size_t frames = 1,
-                   const std::function<void(const RenderProgress&)>& progress = {});
+                           const std::function<void(const RenderProgress&)>& progress = {});
 
 }  // namespace obscura

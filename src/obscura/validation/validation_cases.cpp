@@ -118,7 +118,7 @@ class Solver {
   // The photon map is judged at 2 % (issue #4): its density estimate is biased.
   double tolerance(double case_tolerance) const {
     return integrator_->method() == RenderMethod::kPhotonMap ? std::max(case_tolerance, 0.02)
-                                                              : case_tolerance;
+                                                             : case_tolerance;
   }
 
  private:
@@ -152,12 +152,15 @@ void check_options(const ValidationOptions& o) {
   // The settings `obscura validate` takes on its command line are named by
   // their options; the rest by their place in a scene's render object.
   static const std::map<std::string_view, std::string_view> kOptions = {
-      {"photon_map/photons", "--photons"},  {"photon_map/k", "--k"},
-      {"photon_map/max_radius_m", "--max-radius"}, {"photon_map/step_m", "--step"},
+      {"photon_map/photons", "--photons"},
+      {"photon_map/k", "--k"},
+      {"photon_map/max_radius_m", "--max-radius"},
+      {"photon_map/step_m", "--step"},
       {"threads", "--threads"}};
   check_render_settings(o.settings, [](std::string_view key, std::string_view what) {
     const auto it = kOptions.find(key);
-    return InputError("", it != kOptions.end() ? std::string(it->second) : "render/" + std::string(key),
+    return InputError("",
+                      it != kOptions.end() ? std::string(it->second) : "render/" + std::string(key),
                       std::string(what));
   });
 }

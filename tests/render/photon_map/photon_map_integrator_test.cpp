@@ -2,7 +2,6 @@
 // furnace and equilibrium (hybrid and pure forms) and a slab through `validate` (2 %,
 // issue #4), the two study scenes against a path-traced reference image, and
 // thread independence.
-#include "support/render_helpers.h"
 #include "obscura/render/photon_map/photon_map_integrator.h"
 
 #include <gtest/gtest.h>
@@ -13,6 +12,7 @@
 #include "obscura/render/renderer.h"
 #include "obscura/scene/example_scenes.h"
 #include "obscura/validation/validation_cases.h"
+#include "support/render_helpers.h"
 
 namespace obscura {
 namespace {

@@ -29,9 +29,9 @@ void EmissionAbsorptionIntegrator::band_radiance(const CameraRay& camera, int se
     if (camera.on_surface) {
       const SurfaceMaterial& m = scene_.surfaces[camera.hit.surface]->material();
       const double emissivity = m.emissivity_at(nd.wavelength_um);
-      background = emissivity * nd.planck(m.temperature_k) +
-                   (1.0 - emissivity) *
-                       scene_.sky.cosine_weighted_mean(camera.hit.normal, nd.wavelength_um);
+      background =
+          emissivity * nd.planck(m.temperature_k) +
+          (1.0 - emissivity) * scene_.sky.cosine_weighted_mean(camera.hit.normal, nd.wavelength_um);
     } else {
       background = scene_.sky.radiance(camera.ray.direction, nd.wavelength_um);
     }

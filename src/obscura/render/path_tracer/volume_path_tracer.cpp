@@ -46,8 +46,7 @@ double trace_path(const Scene& scene, const Ray& ray, const SpectralNode& node, 
   return trace_path(scene, camera, node, rng);
 }
 
-double trace_path(const Scene& scene, const CameraRay& camera, const SpectralNode& node,
-                  Rng& rng) {
+double trace_path(const Scene& scene, const CameraRay& camera, const SpectralNode& node, Rng& rng) {
   const PathTracerSettings& settings = scene.settings.path_tracer;
   const Medium* medium = scene.medium.get();
   const SpectralLerp lambda = node.lerp();
@@ -62,10 +61,10 @@ double trace_path(const Scene& scene, const CameraRay& camera, const SpectralNod
   for (int depth = 0; depth < settings.max_depth; ++depth) {
     // The camera ray's surface is known; every later segment looks for its own.
     SurfaceHit hit = camera.hit;
-    const bool on_surface =
-        depth == 0 ? camera.on_surface
-                   : intersect_surfaces(scene.surfaces, ray, 1e-9,
-                                        std::numeric_limits<double>::infinity(), hit);
+    const bool on_surface = depth == 0
+                                ? camera.on_surface
+                                : intersect_surfaces(scene.surfaces, ray, 1e-9,
+                                                     std::numeric_limits<double>::infinity(), hit);
     const double t_surface = on_surface ? hit.t : std::numeric_limits<double>::infinity();
     const auto collision =
         medium ? sample_free_flight(*medium, ray, t_surface, lambda, rng, point) : std::nullopt;

@@ -131,8 +131,8 @@ void PhotonMapIntegrator::band_radiance(const CameraRay& camera, int sensor, int
 }
 
 void PhotonMapIntegrator::radiance_along(const CameraRay& camera, const SpectralNodes& nodes,
-                                   const BandMaps& maps, Rng& rng, Workspace& ws, double* out,
-                                   int depth) const {
+                                         const BandMaps& maps, Rng& rng, Workspace& ws, double* out,
+                                         int depth) const {
   const int n = static_cast<int>(nodes.size());
   // Emission and transmittance, exactly.
   NodeArray emission, transmittance, scattered, behind;
@@ -218,8 +218,8 @@ double PhotonMapIntegrator::single_scattering(const Vec3& x, const Vec3& directi
   const Ray shadow{x, w};
   SurfaceHit other;
   const bool blocked = intersect_surfaces(scene_.surfaces, shadow, 1e-9, kInf, other);
-  const double tr = estimate_transmittance(*scene_.medium, shadow, blocked ? other.t : kInf,
-                                           lambda, rng, ws.scratch);
+  const double tr = estimate_transmittance(*scene_.medium, shadow, blocked ? other.t : kInf, lambda,
+                                           rng, ws.scratch);
   if (tr > 0.0)
     source += sigma_s * tr *
               (blocked ? surface_radiance(scene_, other, shadow.at(other.t), node, rng, ws.scratch)
@@ -310,13 +310,12 @@ void PhotonMapIntegrator::background(const CameraRay& camera, const SpectralNode
   // of a dark ground by 1/ρ); deeper gathers continue with probability ρ_max,
   // the band's largest ρ, and weight ρ_j / ρ_max, so the recursion ends
   // without bias.
-  if (reflectance > 0.0 && depth < kMaxGatherDepth &&
-      (depth == 0 || rng.uniform() < reflectance)) {
+  if (reflectance > 0.0 && depth < kMaxGatherDepth && (depth == 0 || rng.uniform() < reflectance)) {
     const Ray gather{
         p, local_to_world(hit.normal, sample_cosine_hemisphere(rng.uniform(), rng.uniform()))};
     NodeArray gathered;
     radiance_along(find_camera_ray_hit(scene_, gather), nodes, maps, rng, ws, gathered.data(),
-             depth + 1);
+                   depth + 1);
     for (int j = 0; j < n; ++j)
       out[j] += (depth == 0 ? rho[j] : rho[j] / reflectance) * gathered[j];
   }

@@ -90,7 +90,7 @@ class PhotonMapIntegrator final : public Integrator {
   const Scene& scene_;
   const FrameSpectra& spectra_;
   PhotonMapSettings settings_;
-  std::vector<std::vector<BandMaps>> maps_;  // [sensor][band][node]
+  std::vector<std::vector<BandMaps>> maps_;    // [sensor][band][node]
   std::vector<PreparationStats> preparation_;  // per sensor
 };
 
