@@ -9,9 +9,9 @@
 //
 // The scenario (docs/dispersion.md, "Benchmark"): the tank is at the origin
 // facing north (+y), so its left is west and the wind blows from 270° at
-// 3 m/s (10 m reference), class D (overcast, DOMAIN.md §3.5). Each grenade is a
-// burning 360 g terephthalic-acid fill (M83-like, DOMAIN.md §2.6; yield 1)
-// emitting for ~1 min (burning grenades, DOMAIN.md §2.6), lying on the ground
+// 3 m/s (10 m reference), class D (overcast, docs/domain.md §3.5). Each grenade is a
+// burning 360 g terephthalic-acid fill (M83-like, docs/domain.md §2.6; yield 1)
+// emitting for ~1 min (burning grenades, docs/domain.md §2.6), lying on the ground
 // (release height 0.3 m) on a 30 m arc from −52.5° to +52.5° either side of the
 // bow, launched as a salvo 0.05 s apart. σ0 = 1.5 m, 30 K excess at the
 // source decaying in 10 s: illustrative, not measured values.

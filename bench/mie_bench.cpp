@@ -1,6 +1,6 @@
 // Cost of Mie theory: single-sphere evaluations per second at x = 1, 100 and
 // 1e4, and size-distribution integrals (bulk optics) per second for a fog-oil
-// smoke (DOMAIN.md §2.2–2.3: lognormal, MMD 0.6 µm, σ_g 1.6, ρ 0.90 g/cm³) in
+// smoke (docs/domain.md §2.2–2.3: lognormal, MMD 0.6 µm, σ_g 1.6, ρ 0.90 g/cm³) in
 // the visible, at 1.064 µm and in the LWIR. Prints figures; asserts nothing.
 //   bench_mie [--threads N] [--seconds S]
 #include <chrono>

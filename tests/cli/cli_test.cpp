@@ -98,7 +98,7 @@ TEST_F(CliTest, RadianceAndItsInverse) {
   testing::CliResult r = run("radiance --temperature 300 --band 8:12 --json");
   ASSERT_EQ(r.status, 0) << r.err;
   const double l = nlohmann::json::parse(r.out)["band_radiance"].get<double>();
-  EXPECT_NEAR(l, 38.5, 0.1);  // DOMAIN.md §5.3
+  EXPECT_NEAR(l, 38.5, 0.1);  // docs/domain.md §5.3
   r = run("radiance --band-radiance " + std::to_string(l) + " --band lwir --json");
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_NEAR(nlohmann::json::parse(r.out)["temperature"].get<double>(), 300.0, 1e-3);

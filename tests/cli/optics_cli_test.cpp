@@ -53,7 +53,7 @@ TEST_F(OpticsCliTest, FourBandCentresAsJson) {
                                          "asymmetry", "hydrated_mass_factor", "method", "note"}));
   EXPECT_EQ(j["rows"][0]["wavelength_um"].get<double>(), 0.55);
   EXPECT_EQ(j["rows"][0]["method"], "mie");
-  // DOMAIN.md §2.2: WP/RP 3–5 m²/g in the visible [U]; 0.2–0.5 in the LWIR [U].
+  // docs/domain.md §2.2: WP/RP 3–5 m²/g in the visible [U]; 0.2–0.5 in the LWIR [U].
   const double visible = j["rows"][0]["mass_extinction_m2_g"].get<double>();
   EXPECT_GT(visible, 3.0);
   EXPECT_LT(visible, 5.0);

@@ -1,5 +1,5 @@
 // Planck's law against values computed at 50 significant digits from the exact
-// 2019 SI constants (DOMAIN.md §5.2; Python decimal, independent of this code),
+// 2019 SI constants (docs/domain.md §5.2; Python decimal, independent of this code),
 // Wien's displacement law and the Stefan–Boltzmann law.
 #include "obscura/core/planck.h"
 
@@ -64,7 +64,7 @@ TEST(Planck, WideBandMatchesStefanBoltzmann) {
 }
 
 TEST(Planck, PublishedBandRadiances) {
-  // DOMAIN.md §5.3, flat unit response, blackbody; values as printed (3–4 digits).
+  // docs/domain.md §5.3, flat unit response, blackbody; values as printed (3–4 digits).
   const BandQuadrature mwir = BandQuadrature::accurate(Band::preset("mwir"));
   const BandQuadrature lwir = BandQuadrature::accurate(Band::preset("lwir"));
   const double temps[] = {260, 280, 300, 320, 350};

@@ -1,8 +1,8 @@
 // The materials database (data/materials/*.json, docs/materials.md): every
 // shipped file loads; its measured index tables carry the source values; the
-// mass extinction of every shipped obscurant lies in DOMAIN.md §2.2's cited
+// mass extinction of every shipped obscurant lies in docs/domain.md §2.2's cited
 // ranges at the band centres; phosphorus smoke grows with humidity; thin flakes
-// follow DOMAIN.md §2.4; bad files name the file and the JSON path.
+// follow docs/domain.md §2.4; bad files name the file and the JSON path.
 #include "obscura/optics/material.h"
 
 #include <gtest/gtest.h>
@@ -26,7 +26,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// The band centres of DOMAIN.md §2.2's columns: visible, Nd:YAG, MWIR, LWIR.
+// The band centres of docs/domain.md §2.2's columns: visible, Nd:YAG, MWIR, LWIR.
 constexpr double kVisible = 0.55, kYag = 1.064, kMwir = 4.0, kLwir = 10.0;
 
 Material shipped(const std::string& name) {
@@ -132,7 +132,7 @@ TEST(Material, IndexTablesHoldTheSourceRows) {
   }
 }
 
-// Between rows the index is linear in wavelength. DOMAIN.md §2.5 quotes
+// Between rows the index is linear in wavelength. docs/domain.md §2.5 quotes
 // values interpolated from the same files; they are reproduced to their
 // printed digits.
 TEST(Material, InterpolatedIndicesMatchDomainTable) {
@@ -167,11 +167,11 @@ TEST(Material, InterpolatedIndicesMatchDomainTable) {
 }
 
 // The key physical check: α_ext (m²/g) of each shipped obscurant at the band
-// centres against DOMAIN.md §2.2. [U] literature ranges (EOSAEL/COMBIC and
-// smoke-week literature) must contain the value; where DOMAIN.md gives its own
+// centres against docs/domain.md §2.2. [U] literature ranges (EOSAEL/COMBIC and
+// smoke-week literature) must contain the value; where §2.2 gives its own
 // Mie value [D] for the same model, the value must agree with it within the
 // stated tolerance (half a unit of the printed digit, or a few per cent where
-// DOMAIN.md's inputs are not fully stated).
+// the inputs behind §2.2 are not fully stated).
 struct Expectation {
   const char* material;
   double wavelength;
@@ -219,7 +219,7 @@ TEST(Material, MassExtinctionWithinDomainRanges) {
       {"brass_flakes", kVisible, 0.365, 1.5, "§2.2 flake rule 0.37–1.5 [D]"},
       {"brass_flakes", kLwir, 0.365, 1.5, "§2.2 flake rule 0.37–1.5 [D]"},
       // Soot spheres: [D] 4.4, 1.7, 0.27, 0.10 (inputs not stated in
-      // DOMAIN.md, see soot.json): within 5 %; and below the measured
+      // docs/domain.md, see soot.json): within 5 %; and below the measured
       // 8.7 m²/g of flaming soot [S] (Mie spheres underestimate aggregates).
       {"soot", kVisible, 4.4 * 0.95, 4.4 * 1.05, "§2.2 soot [D] 4.4"},
       {"soot", kVisible, 0, 8.7, "§2.1 FDS flaming soot 8.7 [S]"},
@@ -252,7 +252,7 @@ TEST(Material, MassExtinctionWithinDomainRanges) {
     EXPECT_GE(o.mass_extinction_m2_g, o.mass_extinction_min_m2_g);
     EXPECT_LE(o.mass_extinction_m2_g, o.mass_extinction_max_m2_g);
   }
-  // Where DOMAIN.md gives albedo or asymmetry for the same model.
+  // Where docs/domain.md §2.2 gives albedo or asymmetry for the same model.
   EXPECT_NEAR(optics_at(shipped("soot"), kVisible).single_scattering_albedo, 0.29, 0.01);
   EXPECT_LT(optics_at(shipped("soot"), kMwir).single_scattering_albedo, 0.02);  // ω ≈ 0
   const Material fog = shipped("water_fog");
@@ -283,11 +283,11 @@ TEST(Material, MassExtinctionWithinDomainRanges) {
   EXPECT_EQ(wp_lwir.method, "tabulated");
   EXPECT_TRUE(std::isnan(wp_lwir.single_scattering_albedo));  // not given by the source
   EXPECT_NEAR(optics_at(shipped("soil_dust"), kLwir).single_scattering_albedo, 0.45, 1e-12);
-  // Aluminium has no visible value in DOMAIN.md: no data, no invention.
+  // Aluminium has no visible value in docs/domain.md §2.2: no data, no invention.
   EXPECT_THROW(optics_at(shipped("aluminium_flakes"), kVisible), InputError);
 }
 
-// DOMAIN.md §2.3 and §2.6: phosphorus smoke takes up water with RH; α per
+// docs/domain.md §2.3 and §2.6: phosphorus smoke takes up water with RH; α per
 // gram of dry agent rises with RH in the visible. The rule's yields per gram
 // of phosphorus (3.16 / solute fraction) stay near the 3–8 quoted in §2.6.
 TEST(Material, PhosphorusSmokeGrowsWithHumidity) {
@@ -373,7 +373,7 @@ TEST(Material, RandomFacetReflection) {
   EXPECT_NEAR(metal.asymmetry, 0.0, 0.01);
 }
 
-// DOMAIN.md §2.4: α = 1/(ρ t) whatever the wavelength; ω between ½ (black)
+// docs/domain.md §2.4: α = 1/(ρ t) whatever the wavelength; ω between ½ (black)
 // and 1 (mirror); caveats where the flakes are not wider than λ.
 TEST(Material, ThinFlakeRule) {
   const Material brass = shipped("brass_flakes");

@@ -169,7 +169,7 @@ TEST(BulkOptics, RayleighRegimeMassAbsorptionIsSizeIndependent) {
 // Convergence of the size integral (trapezoid in ln r, step halved until two
 // successive halvings agree): halving once more from the returned estimate
 // changes every quantity by less than 1e-4 relative, for the smokes, fogs and
-// the soot of DOMAIN.md §2, across the bands.
+// the soot of docs/domain.md §2, across the bands.
 struct ConvergenceCase {
   const char* name;
   SizeDistribution dist;
@@ -230,7 +230,7 @@ TEST(BulkOptics, ResultDoesNotDependOnThreadCount) {
   EXPECT_EQ(one.intervals, two.intervals);
 }
 
-// Cross-check against the Mie values of DOMAIN.md §2.3 (computed elsewhere
+// Cross-check against the Mie values of docs/domain.md §2.3 (computed elsewhere
 // for lognormal droplets, σ_g = 1.6, given by mass median diameter, printed to
 // two figures): within half a unit of the last printed digit.
 TEST(BulkOptics, AgreesWithDomainTable) {
@@ -250,7 +250,7 @@ TEST(BulkOptics, AgreesWithDomainTable) {
       {0.7, 0.55, 1.42, 1.6, 3.9, 0.05},
       {1.0, 0.55, 1.42, 1.6, 3.2, 0.05},
       {2.0, 0.55, 1.42, 1.6, 1.4, 0.05},
-      // water, n = 1.333 at 0.55 µm and 1.326 at 1.064 µm (DOMAIN.md §2.5), ρ 1.0
+      // water, n = 1.333 at 0.55 µm and 1.326 at 1.064 µm (docs/domain.md §2.5), ρ 1.0
       {0.3, 0.55, 1.333, 1.0, 2.7, 0.05},
       {0.5, 0.55, 1.333, 1.0, 4.4, 0.05},
       {0.7, 0.55, 1.333, 1.0, 4.9, 0.05},

@@ -54,7 +54,7 @@ TEST(DispersionConfig, ReadsEveryFieldAndFillsDefaults) {
   EXPECT_EQ(c.wind.speed_m_s, 4.5);
   EXPECT_EQ(c.wind.from_deg, 270);
   EXPECT_EQ(c.wind.reference_height_m, 8);
-  EXPECT_EQ(c.wind.power_law_exponent, 0.35);  // class E rural default (DOMAIN.md §3.6)
+  EXPECT_EQ(c.wind.power_law_exponent, 0.35);  // class E rural default (docs/domain.md §3.6)
   EXPECT_EQ(c.wind.minimum_height_m, 1.0);
   ASSERT_EQ(c.devices.size(), 3u);
   const SmokeDevice& a = c.devices[0];

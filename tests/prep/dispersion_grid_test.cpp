@@ -97,7 +97,7 @@ TEST(DispersionGrid, PuffSmallerThanAVoxelKeepsItsMassAndSplitsItAcrossVoxels) {
 
 TEST(DispersionGrid, GroundCentreVoxelMatchesTheClosedForm) {
   // The ground voxel under the centre of a ground-released puff holds the
-  // average over its cube of C = 2Q/((2π)^{3/2} σ² σz) · e^{−Δx²/2σ²} … (DOMAIN.md
+  // average over its cube of C = 2Q/((2π)^{3/2} σ² σz) · e^{−Δx²/2σ²} … (docs/domain.md
   // §3.1). Averaging a Gaussian over a centred width h multiplies it by
   // 1 − h²/(24σ²) + O(h⁴/σ⁴) per horizontal axis, and over [0, h] from its
   // centre by 1 − h²/(6σz²) + O(h⁴/σz⁴): an independent check of the erf sums.

@@ -30,7 +30,7 @@ DispersionConfig single_device(double burn_time_s = 0.0) {
   return c;
 }
 
-// DOMAIN.md §3.4 puff σ for class D, with σ0 in quadrature (§3.1).
+// docs/domain.md §3.4 puff σ for class D, with σ0 in quadrature (§3.1).
 double sigma_y_class_d(double x, double s0) {
   return std::sqrt(s0 * s0 + std::pow(0.06 * std::pow(x, 0.92), 2));
 }
@@ -102,7 +102,7 @@ TEST(PuffTrain, SigmaGrowsWithTravelDistanceWithInitialSizeInQuadrature) {
 }
 
 TEST(DispersionModel, GroundCentrelineMatchesTheClosedForm) {
-  // DOMAIN.md §3.1 at z = 0, y = 0 on the centre, H = 0:
+  // docs/domain.md §3.1 at z = 0, y = 0 on the centre, H = 0:
   //   C = 2 Q / ((2π)^{3/2} σx σy σz).
   const DispersionConfig c = single_device();
   const DispersionModel model(c);

@@ -10,7 +10,7 @@ namespace {
 constexpr StabilityClass kClasses[6] = {StabilityClass::kA, StabilityClass::kB, StabilityClass::kC,
                                         StabilityClass::kD, StabilityClass::kE, StabilityClass::kF};
 
-// DOMAIN.md §3.4, "Instantaneous puff σ (Slade 1968 / CCPS 1999)", transcribed
+// docs/domain.md §3.4, "Instantaneous puff σ" (Slade 1968 / CCPS 1999), transcribed
 // here independently of the implementation: σy = σx = a x^b, σz = c x^d.
 struct PuffRow {
   double a, b, c, d;
@@ -19,7 +19,7 @@ constexpr PuffRow kPuffTable[6] = {{0.18, 0.92, 0.60, 0.75}, {0.14, 0.92, 0.53, 
                                    {0.10, 0.92, 0.34, 0.71}, {0.06, 0.92, 0.15, 0.70},
                                    {0.04, 0.92, 0.10, 0.65}, {0.02, 0.89, 0.05, 0.61}};
 
-// DOMAIN.md §3.4, "Briggs (1973) open-country (rural) plume σ", as functions.
+// docs/domain.md §3.4, "Briggs (1973) open-country (rural) plume σ", as functions.
 double briggs_y(int row, double x) {
   const double c[6] = {0.22, 0.16, 0.11, 0.08, 0.06, 0.04};
   return c[row] * x * std::pow(1 + 0.0001 * x, -0.5);
@@ -63,7 +63,7 @@ TEST(Stability, BriggsSigmasMatchTheOpenCountryTableForEveryClass) {
 }
 
 TEST(Stability, RoundedFiguresOfDomainTableAgree) {
-  // DOMAIN.md §3.4 "Numbers": σy/σz in metres at 50 / 100 / 500 m.
+  // docs/domain.md §3.4 "Numbers": σy/σz in metres at 50 / 100 / 500 m.
   struct Case {
     SigmaSet set;
     StabilityClass cls;
@@ -126,7 +126,7 @@ TEST(Stability, ParsesClassesAndSetsAndRejectsOthers) {
 }
 
 TEST(Stability, DefaultWindExponentsAreTheRuralPowerLaw) {
-  // DOMAIN.md §3.6: A–B 0.07, C 0.10, D 0.15, E 0.35, F 0.55.
+  // docs/domain.md §3.6: A–B 0.07, C 0.10, D 0.15, E 0.35, F 0.55.
   const double expected[6] = {0.07, 0.07, 0.10, 0.15, 0.35, 0.55};
   for (int r = 0; r < 6; ++r) EXPECT_EQ(default_wind_profile_exponent(kClasses[r]), expected[r]);
 }

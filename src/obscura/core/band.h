@@ -2,7 +2,7 @@
 // Sensor spectral bands: a wavelength interval with a tabulated relative
 // response R(λ) (piecewise linear, 0 outside the table), and the quadrature that
 // integrates spectral quantities over it. Band radiance L = ∫ R(λ) L_λ dλ in
-// W m⁻² sr⁻¹ (DOMAIN.md §5.3: in-band radiance, not band-mean spectral radiance).
+// W m⁻² sr⁻¹ (docs/domain.md §5.3: in-band radiance, not band-mean spectral radiance).
 #include <string>
 #include <vector>
 

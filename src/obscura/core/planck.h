@@ -1,6 +1,6 @@
 #pragma once
 // Planck's law for blackbody spectral radiance, with the exact 2019 SI constants
-// (DOMAIN.md §5.2): B_λ(T) = c1L / (λ⁵ (exp(c2 / (λ T)) − 1)).
+// (docs/domain.md §5.2): B_λ(T) = c1L / (λ⁵ (exp(c2 / (λ T)) − 1)).
 // Wavelengths are in micrometres; spectral radiance in W m⁻² sr⁻¹ µm⁻¹.
 #include <cmath>
 

@@ -1,6 +1,6 @@
 #pragma once
 // One cloud keyframe — a VoxelGrid of σa, σs, g per spectral sample plus
-// temperature, at one time — stored as one OpenVDB file (DESIGN.md §4), in
+// temperature, at one time — stored as one OpenVDB file (docs/formats.md), in
 // one of two forms: the full spectral grids, or the compact species form
 // (concentration per particle species plus temperature, and the species'
 // optics table), which the reader expands to the same VoxelGrid. The

@@ -1,6 +1,6 @@
 #pragma once
 // Particle mass concentration over time on a regular grid: what the preparation
-// phase turns into radiative properties (DESIGN.md §4). Produced by the
+// phase turns into radiative properties (docs/preparation.md). Produced by the
 // built-in dispersion model (prep/dispersion) or read from CFD output
 // (io/vtk_structured_points, io/netcdf_cf).
 //

@@ -1,6 +1,7 @@
 #pragma once
 // Per-voxel interpolation of a cloud between the two keyframes that bracket a
-// time (DESIGN.md §3, seed §3.1): state = (1 − w)·A + w·B with
+// time (docs/physics.md, "Clouds in time"; the source paper's §3.1):
+// state = (1 − w)·A + w·B with
 //   σa, σs  linear;
 //   g       weighted by σs, so a voxel's phase function is that of its scatterers;
 //   T       linear, except where one keyframe has no extinction at the voxel

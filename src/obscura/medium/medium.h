@@ -1,6 +1,6 @@
 #pragma once
 // The small interface through which the render layer sees any participating
-// medium (DESIGN.md §5): a dense voxel grid, a homogeneous box, and later
+// medium (docs/architecture.md): a dense voxel grid, a homogeneous box, and later
 // animated clouds and VDB-backed grids all plug in here unchanged.
 #include <functional>
 #include <vector>

@@ -1,11 +1,12 @@
 #pragma once
-// The compact species form of a cloud (DESIGN.md §4, the DIRSIG PlumeVDB /
-// EOSAEL habit): the mass concentration (g/m³) of one or a few particle
-// species plus temperature per voxel, and each species' mass optical
-// coefficients at the cloud's wavelengths. expand_species turns it into the
-// dense spectral VoxelGrid every medium samples; the preparation phase
-// (prep/voxelise) and the species keyframe reader (io/vdb_keyframe) both go
-// through it, so the two keyframe forms give bit-identical grids.
+// The compact species form of a cloud (docs/formats.md, "Species form"; the
+// DIRSIG PlumeVDB / EOSAEL habit, docs/domain.md §1): the mass concentration
+// (g/m³) of one or a few particle species plus temperature per voxel, and each
+// species' mass optical coefficients at the cloud's wavelengths.
+// expand_species turns it into the dense spectral VoxelGrid every medium
+// samples; the preparation phase (prep/voxelise) and the species keyframe
+// reader (io/vdb_keyframe) both go through it, so the two keyframe forms give
+// bit-identical grids.
 #include <cstddef>
 #include <string>
 #include <vector>
@@ -57,7 +58,7 @@ std::string species_concentration_name(int s);
 // ("temperature voxel (i,j,k)"). Throws InputError naming `source`.
 void validate_species_cloud(const SpeciesCloud& cloud, const std::string& source);
 
-// The dense spectral grid of `cloud` (DESIGN.md §4), at each wavelength k:
+// The dense spectral grid of `cloud` (docs/formats.md), at each wavelength k:
 //   σa_k = Σ_s c_s k_abs,s(λ_k),   σs_k = Σ_s c_s k_sca,s(λ_k)   (1/m),
 //   g_k  = Σ_s (c_s k_sca,s(λ_k) / σs_k) g_s(λ_k)   (scattering-weighted),
 // T = the cloud's temperature. Sums are in double, rounded to float once.

@@ -1,5 +1,5 @@
 #pragma once
-// A dense regular voxel grid of radiative properties (DESIGN.md §4): for each of
+// A dense regular voxel grid of radiative properties (docs/formats.md): for each of
 // N spectral samples (wavelengths in µm) the absorption and scattering
 // coefficients σa, σs (1/m) and the Henyey–Greenstein asymmetry g, plus one
 // temperature (K) per voxel. This is "what the grid stores"; GridMedium is how

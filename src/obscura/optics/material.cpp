@@ -21,7 +21,7 @@ namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // The size integral's tolerance. Published coefficients are known to a few
-// per cent at best (DOMAIN.md §2.2); 1e-3 keeps the quadrature well below
+// per cent at best (docs/domain.md §2.2); 1e-3 keeps the quadrature well below
 // that and converges for weakly absorbing fog drops whose absorption sits in
 // unresolved Mie resonances (water, MMD 10 µm, at 1.064 µm does not reach
 // bulk_optics' default 1e-4 within its interval limit).
@@ -348,7 +348,7 @@ MaterialOptics flake_at(const Material& material, double lambda) {
   if (f.diameter_um && f.diameter_um->value <= lambda)
     notes.push_back(fmt::format(
         "flakes {} µm across are not wider than the wavelength: the rule overestimates α here "
-        "(DOMAIN.md §2.4)",
+        "(docs/domain.md §2.4)",
         f.diameter_um->value));
   if (f.index && covers(*f.index, lambda)) {
     const std::complex<double> m = index_at(*f.index, lambda);

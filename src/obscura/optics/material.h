@@ -3,7 +3,7 @@
 // what one obscurant is optically, with the source of every number, and its
 // bulk coefficients at a wavelength and relative humidity.
 //
-// Three kinds of material, chosen by what has been published (DOMAIN.md §2):
+// Three kinds of material, chosen by what has been published (docs/domain.md §2):
 //   "mie"        spheres of a tabulated complex refractive index, density and
 //                lognormal size distribution: bulk_optics (size_distribution.h)
 //                with n and k interpolated linearly in wavelength; hygroscopic
@@ -12,7 +12,7 @@
 //                tabulated bands.
 //   "tabulated"  mass coefficients by band or wavelength from the literature,
 //                not from Mie (cited ranges are kept as ranges).
-//   "thin-flake" randomly oriented opaque flakes: α_ext = 1/(ρ t) (DOMAIN.md
+//   "thin-flake" randomly oriented opaque flakes: α_ext = 1/(ρ t) (docs/domain.md
 //                §2.4); ω and g from the large-particle limit with the
 //                measured index, when the file gives one.
 // Coefficients are in m²/g of the material's mass basis (Material::mass_basis).
@@ -28,7 +28,7 @@
 namespace obscura {
 
 // A number from the literature: a value, or a cited range whose midpoint is
-// the nominal value (DOMAIN.md §6.4: expose ranges, not constants).
+// the nominal value (docs/domain.md §6.4: expose ranges, not constants).
 struct CitedValue {
   double value = 0;  // nominal: the given value, or (min + max) / 2
   double min = 0, max = 0;
@@ -89,7 +89,7 @@ struct MieModel {
   std::optional<HumidityGrowth> humidity;
 };
 
-// α_ext = 1/(ρ t̄) with t̄ the mean thickness (DOMAIN.md §2.4): a population
+// α_ext = 1/(ρ t̄) with t̄ the mean thickness (docs/domain.md §2.4): a population
 // of equal-area flakes of thicknesses t_i has area/mass = 1/(ρ mean t).
 struct ThinFlakeModel {
   CitedValue thickness_um;

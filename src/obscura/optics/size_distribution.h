@@ -20,7 +20,7 @@ struct LognormalDistribution {
   double median_radius_um = 0;  // count median radius r_g, µm (> 0)
   double geometric_std = 0;     // geometric standard deviation σ_g (> 1)
 
-  // From the mass median diameter, as DOMAIN.md §2.2–2.3 quote smoke sizes:
+  // From the mass median diameter, as docs/domain.md §2.2–2.3 quote smoke sizes:
   // r_g = (MMD/2) exp(−3 ln²σ_g) (Hatch & Choate 1929; Hinds eq. 4.52).
   static LognormalDistribution from_mass_median_diameter(double mmd_um, double geometric_std);
 };

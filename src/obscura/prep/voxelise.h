@@ -1,5 +1,5 @@
 #pragma once
-// The preparation phase's last step (DESIGN.md §4, the source paper's
+// The preparation phase's last step (docs/preparation.md, the source paper's
 // "preparation phase"): particle mass concentration c (g/m³) and the mass
 // optical coefficients of the particles (m²/g) give the radiative properties
 // of every voxel,

@@ -37,7 +37,8 @@ std::shared_ptr<VoxelGrid> slab_grid(int nz, double sigma_a, double sigma_s,
   return g;
 }
 
-// Isothermal absorbing–emitting slab: L = B(T)(1 − e^{−τ}) + L_bg e^{−τ} (DESIGN.md §7).
+// Isothermal absorbing–emitting slab: L = B(T)(1 − e^{−τ}) + L_bg e^{−τ} (a validation
+// case, docs/validation.md).
 TEST(EmissionAbsorption, IsothermalSlabMatchesClosedForm) {
   const double t_slab = 320.0, t_bg = 280.0, lam = 10.0;
   for (double sigma_a : {0.01, 0.4, 3.0, 40.0}) {

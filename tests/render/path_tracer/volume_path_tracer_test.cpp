@@ -198,7 +198,8 @@ TEST(VolumePathTracer, AgreesWithEmissionAbsorptionWithoutScattering) {
 }
 
 // Single scattering of sunlight in an optically thin conservative slab, seen
-// from below (DESIGN.md §7). Closed form along the view ray, heights z = μ s:
+// from below (a validation case, docs/validation.md). Closed form along the view
+// ray, heights z = μ s:
 //   L = σs p(Θ) E ∫₀^{d/μ} e^{−σs (d − μ s)/μ0} e^{−σs s} ds
 //     = σs p E e^{−τ/μ0} (e^{a d/μ} − 1)/a,  a = σs (μ/μ0 − 1), τ = σs d.
 // Multiple scattering adds O(τ) relative: at τ = 0.002 below 0.3 %.

@@ -16,7 +16,7 @@ struct DispersionConfig {
   std::vector<SmokeDevice> devices;  // at least one
   Wind wind;
   StabilityClass stability = StabilityClass::kD;  // neutral: overcast, dawn and dusk
-  SigmaSet sigma_set = SigmaSet::kCcpsPuff;       // DOMAIN.md §9
+  SigmaSet sigma_set = SigmaSet::kCcpsPuff;       // docs/domain.md §3.7
   double ambient_temperature_k = 288.15;          // ISA sea level, 15 °C
   // Where the configuration came from and the JSON path of its object: every
   // validation error names source and json_path + "/devices/2/agent_mass_g".

@@ -29,7 +29,7 @@ class DispersionModel {
   // Aerosol mass released up to `time_s` (puffs whose release time has come), g.
   double released_mass_g(double time_s) const;
 
-  // Σ over released puffs of puff_concentration_g_m3 (DOMAIN.md §3.1), g/m³.
+  // Σ over released puffs of puff_concentration_g_m3 (docs/domain.md §3.1), g/m³.
   double concentration_g_m3(const Vec3& point_m, double time_s) const;
 
   // T = T_ambient + Σ C_i ΔT_i / Σ C_i, K: the smoke at a point is a mix of

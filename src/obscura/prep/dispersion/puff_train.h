@@ -1,7 +1,7 @@
 #pragma once
 // Gaussian puffs: what a smoke device releases, where each puff is at a later
 // time and how large it has grown, and its concentration field with ground
-// reflection (DOMAIN.md §3.1; docs/dispersion.md).
+// reflection (docs/domain.md §3.1; docs/dispersion.md).
 #include <vector>
 
 #include "obscura/core/vec3.h"
@@ -48,10 +48,10 @@ std::vector<Puff> puff_train(const SmokeDevice& device, const Wind& wind);
 
 // The puff at `time_s` (>= release_time_s): centre advected by velocity · age,
 // σ from the set at travel distance x = |velocity| · age, with σ0 in
-// quadrature: σ² = σ0² + σ_set(x)² (DOMAIN.md §3.1, virtual source).
+// quadrature: σ² = σ0² + σ_set(x)² (docs/domain.md §3.1, virtual source).
 PuffState puff_state(const Puff& puff, double time_s, SigmaSet set, StabilityClass stability);
 
-// C(p) of one puff with ground reflection at z = 0 (DOMAIN.md §3.1):
+// C(p) of one puff with ground reflection at z = 0 (docs/domain.md §3.1):
 //   Q / ((2π)^{3/2} σx σy σz) · exp(−Δx²/2σx²) exp(−Δy²/2σy²)
 //     · {exp(−(z−H)²/2σz²) + exp(−(z+H)²/2σz²)},   g/m³; 0 below the ground.
 double puff_concentration_g_m3(const PuffState& puff, const Vec3& point_m);

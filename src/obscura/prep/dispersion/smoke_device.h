@@ -16,10 +16,10 @@ struct SmokeDevice {
   double burn_time_s = 0;       // release duration (>= 0; 0: instantaneous burst), s
   double agent_mass_g = 0;      // fill of obscurant agent (> 0), g
   // Aerosol mass per agent mass (> 0): WP and RP take up water and give about
-  // 3–8 (DOMAIN.md §2.6); 1 for agents released as they are (TA, fog oil).
+  // 3–8 (docs/domain.md §2.6); 1 for agents released as they are (TA, fog oil).
   double yield_factor = 1.0;
   // σ0 of the cloud at release (> 0), added in quadrature to the travel σ in
-  // all three axes (virtual source, DOMAIN.md §3.1): a burst radius, or the
+  // all three axes (virtual source, docs/domain.md §3.1): a burst radius, or the
   // size of the plume where it leaves a burning canister.
   double initial_sigma_m = 1.0;
   // Temperature of fresh smoke above ambient (may be 0 or negative), K, and the

@@ -14,17 +14,17 @@ struct PowerLaw {
 
 // Instantaneous puff σ, Slade (1968) "Meteorology and Atomic Energy" as
 // tabulated in CCPS (1999) "Guidelines for Consequence Analysis of Chemical
-// Releases" (DOMAIN.md §3.4, "Instantaneous puff σ"); the same constants are
+// Releases" (docs/domain.md §3.4, "Instantaneous puff σ"); the same constants are
 // in GasDispersion.jl `src/utils/equation_sets/ccps.jl`. The
 // correlations were fitted to field trials far from the source; within tens
 // of metres they are extrapolations, and there the device's initial cloud size
-// (added in quadrature, DOMAIN.md §3.1) dominates anyway.
+// (added in quadrature, docs/domain.md §3.1) dominates anyway.
 constexpr PowerLaw kPuffHorizontal[6] = {{0.18, 0.92}, {0.14, 0.92}, {0.10, 0.92},
                                          {0.06, 0.92}, {0.04, 0.92}, {0.02, 0.89}};
 constexpr PowerLaw kPuffVertical[6] = {{0.60, 0.75}, {0.53, 0.73}, {0.34, 0.71},
                                        {0.15, 0.70}, {0.10, 0.65}, {0.05, 0.61}};
 
-// Briggs (1973) open-country (rural) plume σ (DOMAIN.md §3.4, first table; as
+// Briggs (1973) open-country (rural) plume σ (docs/domain.md §3.4, second table; as
 // in CCPS 1999 and GasDispersion.jl `ccps.jl`, `CCPSRural`), for 10²–10⁴ m:
 //   σy = c x (1 + 0.0001 x)^(−½)
 //   σz = d x (1 + e x)^(−n)
@@ -76,7 +76,7 @@ DispersionSigmas dispersion_sigmas(SigmaSet set, StabilityClass stability, doubl
 }
 
 double default_wind_profile_exponent(StabilityClass stability) {
-  // CCPS (1999) rural power-law exponents (DOMAIN.md §3.6).
+  // CCPS (1999) rural power-law exponents (docs/domain.md §3.6).
   constexpr double kRural[6] = {0.07, 0.07, 0.10, 0.15, 0.35, 0.55};
   return kRural[row(stability)];
 }

@@ -2,7 +2,7 @@
 // Pasquill–Gifford atmospheric stability classes and the dispersion
 // coefficients σx, σy, σz (m) as functions of downwind travel distance x (m)
 // that the built-in dispersion model grows its puffs with (docs/dispersion.md,
-// DOMAIN.md §3.4–3.6 and §9).
+// docs/domain.md §3.4–3.7).
 #include <optional>
 #include <string>
 
@@ -18,7 +18,7 @@ std::string to_string(StabilityClass stability);
 // Which table of σ(x) correlations to use.
 enum class SigmaSet {
   // Instantaneous puff σ (Slade 1968, as tabulated in CCPS 1999): the right
-  // set for puffs, and the default (DOMAIN.md §9).
+  // set for puffs, and the default (docs/domain.md §3.7).
   kCcpsPuff,
   // Briggs (1973) open-country plume σ (10-min averaged continuous plumes):
   // offered for long-averaged plume studies; it grows several times faster.
@@ -41,7 +41,7 @@ struct DispersionSigmas {
 DispersionSigmas dispersion_sigmas(SigmaSet set, StabilityClass stability, double downwind_m);
 
 // Default exponent p of the power-law wind profile u(z) = u_ref (z/z_ref)^p for
-// rural terrain (CCPS 1999, DOMAIN.md §3.6): A–B 0.07, C 0.10, D 0.15,
+// rural terrain (CCPS 1999, docs/domain.md §3.6): A–B 0.07, C 0.10, D 0.15,
 // E 0.35, F 0.55.
 double default_wind_profile_exponent(StabilityClass stability);
 

@@ -1,6 +1,6 @@
 #pragma once
 // A steady, horizontally uniform wind with a power-law profile in height
-// (DOMAIN.md §3.6): u(z) = u_ref (z / z_ref)^p.
+// (docs/domain.md §3.6): u(z) = u_ref (z / z_ref)^p.
 //
 // World axes are x east, y north, z up (z = 0 is the ground). The direction is
 // the meteorological one: the direction the wind blows FROM, in degrees

@@ -1,6 +1,7 @@
 #pragma once
 // Emission–absorption solution of the radiative transfer equation along a ray
-// (DESIGN.md §3 with σs acting only as extinction: exact where σs = 0):
+// (docs/physics.md, "The radiative transfer equation", with σs acting only as
+// extinction: exact where σs = 0):
 //   L = ∫₀^t_max e^{−τ(0,s)} σa(s) B_λ(T(s)) ds + e^{−τ(0,t_max)} L_background.
 // The medium is visited segment by segment (one reconstruction cell each);
 // inside a segment σa, σs and T are exact cubics in s, so the optical depth

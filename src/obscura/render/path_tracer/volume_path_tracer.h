@@ -1,5 +1,5 @@
 #pragma once
-// An unbiased volumetric path tracer for the full RTE (DESIGN.md §3): the
+// An unbiased volumetric path tracer for the full RTE (docs/physics.md): the
 // reference solution that faster methods are checked against. It handles
 // volume emission σa B(T), scattering with the Henyey–Greenstein phase
 // function, emitting and Lambertian-reflecting surfaces, the sky and the sun;
