@@ -1,7 +1,7 @@
 #pragma once
 // Subcommands of the `obscura` tool. Each registers its options on the parent
 // app and returns the function that runs it (exit status). Commands are thin:
-// they parse, call the library and print (STYLE.md §16).
+// they parse, call the library and print (docs/conventions.md §16).
 #include <CLI/CLI.hpp>
 #include <functional>
 #include <string>

@@ -1,4 +1,4 @@
-// Every integrator on the closed-form cases (pbrt-v4's integrators_test, STYLE.md
+// Every integrator on the closed-form cases (pbrt-v4's integrators_test, docs/conventions.md
 // §8): white furnace, thermal equilibrium, the isothermal emitting slab and
 // single scattering of sunlight, each run through the method's own integrator
 // by `validate` (validation/validation_cases.h) with automatic sample counts.

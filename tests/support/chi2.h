@@ -1,5 +1,5 @@
 #pragma once
-// One chi-square goodness-of-fit harness for every sampler (STYLE.md §5, after
+// One chi-square goodness-of-fit harness for every sampler (docs/conventions.md §5, after
 // Mitsuba 3's chi2.py and pbrt-v4's bsdfs_test.cpp): directions on the sphere
 // (phase functions, sun cone, sky) and 1-D variables (free-flight distances).
 //

@@ -1,6 +1,6 @@
 #pragma once
 // Internal invariants (pbrt-v4 CHECK, but an exception instead of an abort:
-// library code never ends the process, STYLE.md §10). A failed check is a bug
+// library code never ends the process, docs/conventions.md §10). A failed check is a bug
 // in obscura, not bad input: the message names the source line and the
 // condition so that a user can report it. OBSCURA_CHECK is always on and costs
 // one predictable branch; OBSCURA_DCHECK is for checks too costly for release

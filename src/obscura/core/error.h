@@ -1,5 +1,5 @@
 #pragma once
-// Errors are exceptions at the library boundary, never exit() (STYLE.md §10):
+// Errors are exceptions at the library boundary, never exit() (docs/conventions.md §10):
 // the CLI catches them, prints the message and returns a non-zero status.
 #include <stdexcept>
 #include <string>

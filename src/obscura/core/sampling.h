@@ -1,7 +1,7 @@
 #pragma once
 // Warps from the unit square [0,1)² to unit directions, each with its density
 // (per steradian) and its inverse (direction → the two uniforms), so a test can
-// check every warp by round trip (STYLE.md §7, after pbrt-v4 util/sampling.h).
+// check every warp by round trip (docs/conventions.md §7, after pbrt-v4 util/sampling.h).
 //
 // Conventions: the warps work in a local frame whose pole is +z; θ is the polar
 // angle from +z and φ = 2π u2 the azimuth from +x towards +y. To sample around

@@ -1,6 +1,6 @@
 #pragma once
 // The life of a time-varying cloud as a map from scene time to two keyframes
-// and a weight (STYLE.md §4): an initialisation phase played once from the
+// and a weight (docs/conventions.md §4): an initialisation phase played once from the
 // activation, an evolution phase that loops, and, after the deactivation, an
 // extinction phase after which the cloud is gone for good. Pure time logic: no
 // grids are touched here (docs/time-varying-clouds.md, "Lifecycle").

@@ -2,7 +2,7 @@
 // The Henyey–Greenstein phase function (Henyey & Greenstein 1941, ApJ 93, 70),
 // evaluated and sampled exactly, in forms that stay accurate from g = 0 to
 // |g| = 0.999 (the consistency tests in tests/medium/phase_function_test.cpp,
-// after pbrt-v4 media_test.cpp; STYLE.md §6).
+// after pbrt-v4 media_test.cpp; docs/conventions.md §6).
 //
 // Direction convention: both directions are directions of propagation. The
 // incoming direction ω_i is the way the light travels when it reaches the

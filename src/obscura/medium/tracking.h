@@ -1,6 +1,6 @@
 #pragma once
 // Distance sampling and transmittance estimation against a medium's
-// majorants, written once for every integrator (pbrt-v4 SampleT_maj; STYLE.md
+// majorants, written once for every integrator (pbrt-v4 SampleT_maj; docs/conventions.md
 // §2): the path tracer, the photon tracer and later GPU kernels all call these.
 //
 // Both walk the piecewise-constant majorant σ̄ of Medium::trace_majorants and

@@ -3,7 +3,7 @@
 // N spectral samples (wavelengths in µm) the absorption and scattering
 // coefficients σa, σs (1/m) and the Henyey–Greenstein asymmetry g, plus one
 // temperature (K) per voxel. This is "what the grid stores"; GridMedium is how
-// the render layer samples it (STYLE.md §3).
+// the render layer samples it (docs/conventions.md §3).
 #include <cstddef>
 #include <cstdint>
 #include <string>
