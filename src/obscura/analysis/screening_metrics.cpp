@@ -148,13 +148,13 @@ std::vector<std::vector<const ScreeningMetrics*>> group_screening_series(
     const std::vector<ScreeningMetrics>& rows) {
   std::vector<std::vector<const ScreeningMetrics*>> groups;
   for (const ScreeningMetrics& r : rows) {
-    auto g = std::find_if(groups.begin(), groups.end(), [&](const auto& g) {
+    auto group = std::find_if(groups.begin(), groups.end(), [&](const auto& g) {
       return g.front()->sensor == r.sensor && g.front()->band.name() == r.band.name();
     });
-    if (g == groups.end())
+    if (group == groups.end())
       groups.push_back({&r});
     else
-      g->push_back(&r);
+      group->push_back(&r);
   }
   for (auto& g : groups)
     std::stable_sort(g.begin(), g.end(),

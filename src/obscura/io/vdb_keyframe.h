@@ -5,7 +5,8 @@
 // (concentration per particle species plus temperature, and the species'
 // optics table), which the reader expands to the same VoxelGrid. The
 // conventions (grid names, transform, metadata) are in docs/formats.md,
-// "Cloud keyframe (OpenVDB)"; this file is their only implementation.
+// "Cloud keyframe (OpenVDB)"; this file and the io/vdb_* files behind it are
+// their only implementation.
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>

@@ -37,6 +37,63 @@ bool to_cell_space(const VoxelGrid& g, const Ray& ray, double& t_min, double& t_
   return domain.intersect(cell_ray, t_min, t_max);
 }
 
+// Grid indices of the corners of the cell [c0, c1] (per axis).
+void cell_corner_indices(const VoxelGrid& g, const std::array<int, 3>& c0,
+                         const std::array<int, 3>& c1, std::array<std::size_t, 8>& corner_index) {
+  for (int corner = 0; corner < 8; ++corner) {
+    corner_index[corner] = g.index((corner & 1) ? c1[0] : c0[0], (corner & 2) ? c1[1] : c0[1],
+                                   (corner & 4) ? c1[2] : c0[2]);
+  }
+}
+
+// Whether any corner has σa or σs ≠ 0 at any spectral sample (else the cell
+// is clear and gives no segment).
+bool any_extinction(const VoxelGrid& g, int ns, const std::array<std::size_t, 8>& corner_index) {
+  bool any = false;
+  for (int s = 0; s < ns && !any; ++s)
+    for (int corner = 0; corner < 8; ++corner)
+      if (g.sigma_a(s)[corner_index[corner]] != 0.0f ||
+          g.sigma_s(s)[corner_index[corner]] != 0.0f) {
+        any = true;
+        break;
+      }
+  return any;
+}
+
+// Each corner's trilinear weight is a product of three linear factors in s,
+// hence a cubic; the field is the corner values' combination of them.
+void corner_weight_cubics(const std::array<double, 3>& alpha, const std::array<double, 3>& beta,
+                          std::array<Cubic, 8>& basis) {
+  for (int corner = 0; corner < 8; ++corner) {
+    double a1, b1, a2, b2, a3, b3;
+    if (corner & 1) {
+      a1 = alpha[0];
+      b1 = beta[0];
+    } else {
+      a1 = 1 - alpha[0];
+      b1 = -beta[0];
+    }
+    if (corner & 2) {
+      a2 = alpha[1];
+      b2 = beta[1];
+    } else {
+      a2 = 1 - alpha[1];
+      b2 = -beta[1];
+    }
+    if (corner & 4) {
+      a3 = alpha[2];
+      b3 = beta[2];
+    } else {
+      a3 = 1 - alpha[2];
+      b3 = -beta[2];
+    }
+    basis[corner].c[0] = a1 * a2 * a3;
+    basis[corner].c[1] = b1 * a2 * a3 + a1 * b2 * a3 + a1 * a2 * b3;
+    basis[corner].c[2] = b1 * b2 * a3 + b1 * a2 * b3 + a1 * b2 * b3;
+    basis[corner].c[3] = b1 * b2 * b3;
+  }
+}
+
 }  // namespace
 
 void GridMedium::coefficients_at(const Vec3& p, MediumPoint& out) const {
@@ -129,49 +186,9 @@ void GridMedium::trace_segments(const Ray& ray, double t_min, double t_max,
         alpha[a] = o[a] + t0 * dir[a] - cell[a];
         beta[a] = dir[a];
       }
-      bool any = false;
-      for (int corner = 0; corner < 8; ++corner) {
-        corner_index[corner] = g.index((corner & 1) ? c1[0] : c0[0], (corner & 2) ? c1[1] : c0[1],
-                                       (corner & 4) ? c1[2] : c0[2]);
-      }
-      for (int s = 0; s < ns && !any; ++s)
-        for (int corner = 0; corner < 8; ++corner)
-          if (g.sigma_a(s)[corner_index[corner]] != 0.0f ||
-              g.sigma_s(s)[corner_index[corner]] != 0.0f) {
-            any = true;
-            break;
-          }
-      if (!any) continue;
-      // Each corner's trilinear weight is a product of three linear factors in s,
-      // hence a cubic; the field is the corner values' combination of them.
-      for (int corner = 0; corner < 8; ++corner) {
-        double a1, b1, a2, b2, a3, b3;
-        if (corner & 1) {
-          a1 = alpha[0];
-          b1 = beta[0];
-        } else {
-          a1 = 1 - alpha[0];
-          b1 = -beta[0];
-        }
-        if (corner & 2) {
-          a2 = alpha[1];
-          b2 = beta[1];
-        } else {
-          a2 = 1 - alpha[1];
-          b2 = -beta[1];
-        }
-        if (corner & 4) {
-          a3 = alpha[2];
-          b3 = beta[2];
-        } else {
-          a3 = 1 - alpha[2];
-          b3 = -beta[2];
-        }
-        basis[corner].c[0] = a1 * a2 * a3;
-        basis[corner].c[1] = b1 * a2 * a3 + a1 * b2 * a3 + a1 * a2 * b3;
-        basis[corner].c[2] = b1 * b2 * a3 + b1 * a2 * b3 + a1 * b2 * b3;
-        basis[corner].c[3] = b1 * b2 * b3;
-      }
+      cell_corner_indices(g, c0, c1, corner_index);
+      if (!any_extinction(g, ns, corner_index)) continue;
+      corner_weight_cubics(alpha, beta, basis);
       auto combine = [&](const float* values) {
         Cubic r;
         for (int corner = 0; corner < 8; ++corner) {

@@ -112,6 +112,151 @@ void validate(double x, cdouble m) {
         fmt::format("must be a finite number >= 0 (k >= 0 is absorbing), got {}", m.imag()));
 }
 
+// Riccati–Bessel functions of the real argument (Bohren & Huffman §4.8):
+// ψ_n(x) = x j_n(x), χ_n(x) = −x y_n(x), ξ_n = ψ_n − iχ_n, for n = 1, 2, …
+// in turn.
+// χ_n grows with n, so its upward recurrence χ_n = (2n−1)/x χ_{n−1} − χ_{n−2}
+// (χ_{−1} = −sin x, χ_0 = cos x) is stable for every n.
+// ψ_n is taken upward the same way (ψ_{−1} = cos x, ψ_0 = sin x) only while
+// n ≤ x, where it oscillates and the recurrence keeps its absolute accuracy;
+// for n > x it decays monotonically and upward recurrence loses a factor
+// ~x² per step (at x = 1e-3, ψ_2 would keep 4 digits). There ψ_n has no
+// zeros (the first zero of ψ_n lies beyond n + ½ + 1.85 (n + ½)^{1/3}), so it
+// is taken from the downward ratios ψ_{n−1}/ψ_n = D_n(x) + n/x, i.e.
+//   ψ_n = −ψ_{n−1} D̃_{n−1}(x),
+// which keeps full relative accuracy for any x.
+class RiccatiBessel {
+ public:
+  // dx: D̃_n(x) for n = 0 … the highest order asked for.
+  RiccatiBessel(double x, const double* dx)
+      : dx_(dx), inv_x_(1.0 / x), n_upward_(x >= 1.0 ? static_cast<int>(x) : 0) {
+    const double sin_x = std::sin(x), cos_x = std::cos(x);
+    psi_prev2_ = cos_x;
+    psi_prev_ = sin_x;
+    chi_prev2_ = -sin_x;
+    chi_prev_ = cos_x;
+    xi_prev_ = cdouble(psi_prev_, -chi_prev_);
+  }
+
+  // Whether order n is in the upward (oscillating, n ≤ x) range.
+  bool upward(int n) const { return n <= n_upward_; }
+
+  // Order n from orders n − 1 and n − 2.
+  void compute(int n) {
+    const double dn = n;
+    psi_ = upward(n) ? (2.0 * dn - 1.0) * inv_x_ * psi_prev_ - psi_prev2_ : -psi_prev_ * dx_[n - 1];
+    chi_ = (2.0 * dn - 1.0) * inv_x_ * chi_prev_ - chi_prev2_;
+    xi_ = cdouble(psi_, -chi_);
+  }
+  // The order computed last becomes the previous one.
+  void shift() {
+    psi_prev2_ = psi_prev_;
+    psi_prev_ = psi_;
+    chi_prev2_ = chi_prev_;
+    chi_prev_ = chi_;
+    xi_prev_ = xi_;
+  }
+
+  double psi() const { return psi_; }
+  double psi_prev() const { return psi_prev_; }
+  cdouble xi() const { return xi_; }
+  cdouble xi_prev() const { return xi_prev_; }
+
+ private:
+  const double* dx_;
+  double inv_x_;
+  int n_upward_;
+  double psi_prev2_, psi_prev_, chi_prev2_, chi_prev_;
+  cdouble xi_prev_;
+  double psi_ = 0, chi_ = 0;
+  cdouble xi_;
+};
+
+struct ScatteringCoefficients {
+  cdouble a, b;
+};
+
+// Bohren & Huffman eq. 4.88:
+//   a_n = [(D_n(mx)/m + n/x) ψ_n − ψ_{n−1}] / [(D_n(mx)/m + n/x) ξ_n − ξ_{n−1}]
+//   b_n = [(m D_n(mx) + n/x) ψ_n − ψ_{n−1}] / [(m D_n(mx) + n/x) ξ_n − ξ_{n−1}].
+// For n > x the numerators are rewritten with ψ_{n−1} = ψ_n (D_n(x) + n/x):
+//   a_n numerator = ψ_n [D_n(mx)/m − D_n(x)],
+//   b_n numerator = ψ_n [m D_n(mx) − D_n(x)] = ψ_n [m D̃_n(mx) − D̃_n(x)].
+// In b_n both terms tend to (n+1)/x as x → 0 and their difference to
+// (1 − m²) x/(2n+3): the shifted derivatives drop the (n+1)/x exactly, so
+// no digits cancel. For n ≤ x the textbook form is kept, because D_n(x)
+// has poles there (at the zeros of ψ_n) while the textbook form has none.
+// dm_n, dx_n: D̃_n(mx), D̃_n(x).
+ScatteringCoefficients scattering_coefficients(int n, const RiccatiBessel& rb, cdouble dm_n,
+                                               double dx_n, cdouble m, cdouble inv_m,
+                                               cdouble inv_mx, double inv_x) {
+  const double dn = n;
+  const double psi = rb.psi(), psi_prev = rb.psi_prev();
+  const cdouble d_mx = dm_n + (dn + 1.0) * inv_mx;
+  const cdouble da = d_mx * inv_m + dn * inv_x;
+  const cdouble db = m * d_mx + dn * inv_x;
+  cdouble num_a, num_b;
+  if (rb.upward(n)) {
+    num_a = da * psi - psi_prev;
+    num_b = db * psi - psi_prev;
+  } else {
+    num_a = psi * (d_mx * inv_m - (dx_n + (dn + 1.0) * inv_x));
+    num_b = psi * (m * dm_n - dx_n);
+  }
+  return {divide(num_a, da * rb.xi() - rb.xi_prev()), divide(num_b, db * rb.xi() - rb.xi_prev())};
+}
+
+// The series of Bohren & Huffman eqs. 4.61, 4.62, 4.82 and the asymmetry sum
+// (p. 120):
+//   Q_ext = (2/x²) Σ (2n+1) Re(a_n + b_n)
+//   Q_sca = (2/x²) Σ (2n+1) (|a_n|² + |b_n|²)
+//   Q_back = (1/x²) |Σ (2n+1) (−1)^n (a_n − b_n)|²
+//   g Q_sca = (4/x²) [Σ n(n+2)/(n+1) Re(a_n a*_{n+1} + b_n b*_{n+1})
+//                      + Σ (2n+1)/(n(n+1)) Re(a_n b*_n)]
+class MieSums {
+ public:
+  // Whether term n is too small to change any sum: every contribution is
+  // bounded by (2n+1)(|a_n| + |b_n|).
+  bool negligible(int n, const ScatteringCoefficients& c) const {
+    const double w = 2.0 * n + 1.0;
+    return w * (std::abs(c.a) + std::abs(c.b)) <= 1e-17 * std::min(ext_, std::abs(back_));
+  }
+
+  // Adds term n (n = 1, 2, … in turn).
+  void add(int n, const ScatteringCoefficients& c) {
+    const double dn = n;
+    const double w = 2.0 * dn + 1.0;
+    const cdouble a = c.a, b = c.b;
+    ext_ += w * (a.real() + b.real());
+    sca_ += w * (std::norm(a) + std::norm(b));
+    back_ += ((n % 2) ? -w : w) * (a - b);
+    asym_ += w / (dn * (dn + 1.0)) * (a * std::conj(b)).real();
+    if (n > 1)
+      asym_ +=
+          (dn - 1.0) * (dn + 1.0) / dn * (a_prev_ * std::conj(a) + b_prev_ * std::conj(b)).real();
+    a_prev_ = a;
+    b_prev_ = b;
+  }
+
+  MieEfficiencies efficiencies(double x, cdouble m) const {
+    MieEfficiencies q;
+    const double inv_x2 = 1.0 / (x * x);
+    q.qext = 2.0 * inv_x2 * ext_;
+    q.qsca = 2.0 * inv_x2 * sca_;
+    // Absorption is the difference (the optical theorem, Bohren & Huffman eq.
+    // 3.24); rounding can make it a few ulps of Q_ext negative, never physical.
+    q.qabs = m.imag() == 0.0 ? 0.0 : std::max(0.0, q.qext - q.qsca);
+    q.qback = std::norm(back_) * inv_x2;
+    // sca_ underflows only for x below ~1e-50, where g is 0 to all digits.
+    q.g = sca_ > 0.0 ? 2.0 * asym_ / sca_ : 0.0;
+    return q;
+  }
+
+ private:
+  double ext_ = 0, sca_ = 0, asym_ = 0;
+  cdouble back_ = 0, a_prev_ = 0, b_prev_ = 0;
+};
+
 }  // namespace
 
 int mie_term_count(double size_parameter) {
@@ -143,100 +288,22 @@ MieEfficiencies mie_sphere(double x, cdouble m) {
   shifted_log_derivatives(mx, n_max, dm.data());
   shifted_log_derivatives(x, n_max, dx.data());
 
-  // Riccati–Bessel functions of the real argument (Bohren & Huffman §4.8):
-  // ψ_n(x) = x j_n(x), χ_n(x) = −x y_n(x), ξ_n = ψ_n − iχ_n.
-  // χ_n grows with n, so its upward recurrence χ_n = (2n−1)/x χ_{n−1} − χ_{n−2}
-  // (χ_{−1} = −sin x, χ_0 = cos x) is stable for every n.
-  // ψ_n is taken upward the same way (ψ_{−1} = cos x, ψ_0 = sin x) only while
-  // n ≤ x, where it oscillates and the recurrence keeps its absolute accuracy;
-  // for n > x it decays monotonically and upward recurrence loses a factor
-  // ~x² per step (at x = 1e-3, ψ_2 would keep 4 digits). There ψ_n has no
-  // zeros (the first zero of ψ_n lies beyond n + ½ + 1.85 (n + ½)^{1/3}), so it
-  // is taken from the downward ratios ψ_{n−1}/ψ_n = D_n(x) + n/x, i.e.
-  //   ψ_n = −ψ_{n−1} D̃_{n−1}(x),
-  // which keeps full relative accuracy for any x.
-  const int n_upward = x >= 1.0 ? static_cast<int>(x) : 0;
-  const double sin_x = std::sin(x), cos_x = std::cos(x);
-  double psi_prev2 = cos_x, psi_prev = sin_x;
-  double chi_prev2 = -sin_x, chi_prev = cos_x;
-  cdouble xi_prev(psi_prev, -chi_prev);
+  RiccatiBessel rb(x, dx.data());
   const cdouble inv_m = reciprocal(m), inv_mx = reciprocal(mx);
   const double inv_x = 1.0 / x;
-
-  double ext_sum = 0, sca_sum = 0, asym_sum = 0;
-  cdouble back_sum = 0, a_prev = 0, b_prev = 0;
+  MieSums sums;
   int n_summed = 0;
   for (int n = 1; n <= n_max; ++n) {
-    const double dn = n;
-    const double psi =
-        n <= n_upward ? (2.0 * dn - 1.0) * inv_x * psi_prev - psi_prev2 : -psi_prev * dx[n - 1];
-    const double chi = (2.0 * dn - 1.0) * inv_x * chi_prev - chi_prev2;
-    const cdouble xi(psi, -chi);
-
-    // Bohren & Huffman eq. 4.88:
-    //   a_n = [(D_n(mx)/m + n/x) ψ_n − ψ_{n−1}] / [(D_n(mx)/m + n/x) ξ_n − ξ_{n−1}]
-    //   b_n = [(m D_n(mx) + n/x) ψ_n − ψ_{n−1}] / [(m D_n(mx) + n/x) ξ_n − ξ_{n−1}].
-    // For n > x the numerators are rewritten with ψ_{n−1} = ψ_n (D_n(x) + n/x):
-    //   a_n numerator = ψ_n [D_n(mx)/m − D_n(x)],
-    //   b_n numerator = ψ_n [m D_n(mx) − D_n(x)] = ψ_n [m D̃_n(mx) − D̃_n(x)].
-    // In b_n both terms tend to (n+1)/x as x → 0 and their difference to
-    // (1 − m²) x/(2n+3): the shifted derivatives drop the (n+1)/x exactly, so
-    // no digits cancel. For n ≤ x the textbook form is kept, because D_n(x)
-    // has poles there (at the zeros of ψ_n) while the textbook form has none.
-    const cdouble d_mx = dm[n] + (dn + 1.0) * inv_mx;
-    const cdouble da = d_mx * inv_m + dn * inv_x;
-    const cdouble db = m * d_mx + dn * inv_x;
-    cdouble num_a, num_b;
-    if (n <= n_upward) {
-      num_a = da * psi - psi_prev;
-      num_b = db * psi - psi_prev;
-    } else {
-      num_a = psi * (d_mx * inv_m - (dx[n] + (dn + 1.0) * inv_x));
-      num_b = psi * (m * dm[n] - dx[n]);
-    }
-    const cdouble a = divide(num_a, da * xi - xi_prev);
-    const cdouble b = divide(num_b, db * xi - xi_prev);
-
-    // Bohren & Huffman eqs. 4.61, 4.62, 4.82 and the asymmetry sum (p. 120):
-    //   Q_ext = (2/x²) Σ (2n+1) Re(a_n + b_n)
-    //   Q_sca = (2/x²) Σ (2n+1) (|a_n|² + |b_n|²)
-    //   Q_back = (1/x²) |Σ (2n+1) (−1)^n (a_n − b_n)|²
-    //   g Q_sca = (4/x²) [Σ n(n+2)/(n+1) Re(a_n a*_{n+1} + b_n b*_{n+1})
-    //                      + Σ (2n+1)/(n(n+1)) Re(a_n b*_n)]
-    const double w = 2.0 * dn + 1.0;
-    // Past N, stop at the first term too small to change any sum: every
-    // contribution is bounded by (2n+1)(|a_n| + |b_n|).
-    if (n > n_terms &&
-        w * (std::abs(a) + std::abs(b)) <= 1e-17 * std::min(ext_sum, std::abs(back_sum)))
-      break;
-    ext_sum += w * (a.real() + b.real());
-    sca_sum += w * (std::norm(a) + std::norm(b));
-    back_sum += ((n % 2) ? -w : w) * (a - b);
-    asym_sum += w / (dn * (dn + 1.0)) * (a * std::conj(b)).real();
-    if (n > 1)
-      asym_sum +=
-          (dn - 1.0) * (dn + 1.0) / dn * (a_prev * std::conj(a) + b_prev * std::conj(b)).real();
+    rb.compute(n);
+    const ScatteringCoefficients c =
+        scattering_coefficients(n, rb, dm[n], dx[n], m, inv_m, inv_mx, inv_x);
+    // Past N, stop at the first term too small to change any sum.
+    if (n > n_terms && sums.negligible(n, c)) break;
+    sums.add(n, c);
     n_summed = n;
-
-    a_prev = a;
-    b_prev = b;
-    psi_prev2 = psi_prev;
-    psi_prev = psi;
-    chi_prev2 = chi_prev;
-    chi_prev = chi;
-    xi_prev = xi;
+    rb.shift();
   }
-
-  MieEfficiencies q;
-  const double inv_x2 = 1.0 / (x * x);
-  q.qext = 2.0 * inv_x2 * ext_sum;
-  q.qsca = 2.0 * inv_x2 * sca_sum;
-  // Absorption is the difference (the optical theorem, Bohren & Huffman eq.
-  // 3.24); rounding can make it a few ulps of Q_ext negative, never physical.
-  q.qabs = m.imag() == 0.0 ? 0.0 : std::max(0.0, q.qext - q.qsca);
-  q.qback = std::norm(back_sum) * inv_x2;
-  // sca_sum underflows only for x below ~1e-50, where g is 0 to all digits.
-  q.g = sca_sum > 0.0 ? 2.0 * asym_sum / sca_sum : 0.0;
+  MieEfficiencies q = sums.efficiencies(x, m);
   q.terms = n_summed;
   return q;
 }

@@ -181,8 +181,19 @@ RadiusQuadrature radius_quadrature(const SizeDistribution& dist, double waveleng
   return q;
 }
 
-BulkOptics bulk_optics(const SizeDistribution& dist, double wavelength_um, std::complex<double> m,
-                       double density_g_cm3, const BulkOpticsOptions& options) {
+namespace {
+
+// Integrals over u = ln r of p(u) r² (Q_ext, Q_sca, Q_abs, g Q_sca).
+using Sums = std::array<double, 4>;
+
+void add_scaled(Sums& s, const Sums& v, double weight) {
+  for (int i = 0; i < 4; ++i) s[i] += weight * v[i];
+}
+
+// Checks bulk_optics' arguments; returns the integration interval in ln r.
+LnRadiusInterval checked_interval(const SizeDistribution& dist, double wavelength_um,
+                                  std::complex<double> m, double density_g_cm3,
+                                  const BulkOpticsOptions& options) {
   require(options.relative_tolerance > 0 && options.relative_tolerance < 1, "relative_tolerance",
           fmt::format("must lie in (0, 1), got {}", options.relative_tolerance));
   const LnRadiusInterval iv = integration_interval(
@@ -195,7 +206,130 @@ BulkOptics bulk_optics(const SizeDistribution& dist, double wavelength_um, std::
           fmt::format("must be a finite number >= 0 (k >= 0 is absorbing), got {}", m.imag()));
   require(options.fixed_intervals >= 0, "fixed_intervals",
           fmt::format("must be >= 0, got {}", options.fixed_intervals));
+  return iv;
+}
 
+// Trapezoidal rule in u with nested halving: T_{2M} = T_M / 2 + h_{2M} Σ f(new
+// midpoints), so every evaluation is reused. `node_sum` is Σ' f (end nodes
+// weighted ½) over the current nodes; the estimate is h · node_sum. The
+// nodes of a level are evaluated in parallel and summed in index order, so
+// the result does not depend on the thread count.
+class NestedTrapezoid {
+ public:
+  NestedTrapezoid(const SizeDistribution& dist, std::complex<double> m, double size_factor,
+                  double x_max, const LnRadiusInterval& iv, int threads)
+      : dist_(dist),
+        m_(m),
+        size_factor_(size_factor),
+        lo_(iv.lo),
+        width_(iv.hi - iv.lo),
+        threads_(threads),
+        // Threads pay off only for levels with enough work: starting a
+        // parallel loop costs tens of µs, a Mie evaluation ~50 ns per term. The
+        // bound uses the largest size parameter, so it overestimates the work.
+        terms_per_node_(mie_term_count(x_max)) {}
+
+  // The first level: `intervals` equal intervals.
+  void start(int intervals) {
+    add_nodes(intervals + 1,
+              [&](std::size_t i) { return lo_ + width_ * static_cast<double>(i) / intervals; });
+    // The end nodes carry half weight (the integrands are negligible there anyway).
+    add_scaled(node_sum_, values_.front(), -0.5);
+    add_scaled(node_sum_, values_.back(), -0.5);
+    intervals_ = intervals;
+    for (int i = 0; i < 4; ++i) estimate_[i] = node_sum_[i] * width_ / intervals_;
+  }
+
+  // The next level: the midpoints of the current intervals added.
+  void halve() {
+    const double h_new = width_ / (2 * intervals_);
+    add_nodes(intervals_, [&](std::size_t i) { return lo_ + h_new * (2.0 * i + 1.0); });
+    intervals_ *= 2;
+    for (int i = 0; i < 4; ++i) estimate_[i] = node_sum_[i] * h_new;
+  }
+
+  int intervals() const { return intervals_; }
+  const Sums& estimate() const { return estimate_; }
+
+ private:
+  // Integrand at u: p(u) r² (Q_ext, Q_sca, Q_abs, g Q_sca).
+  Sums integrand(double u) const {
+    const double r = std::exp(u);
+    const double w = std::exp(log_density_in_ln_r(dist_, u)) * r * r;
+    if (w == 0.0) return {0, 0, 0, 0};  // underflowed far tail: Mie not needed
+    const MieEfficiencies q = mie_sphere(size_factor_ * r, m_);
+    return {w * q.qext, w * q.qsca, w * q.qabs, w * q.g * q.qsca};
+  }
+
+  template <class UOf>
+  void add_nodes(int count, UOf u_of) {
+    values_.assign(count, Sums{});
+    auto body = [&](std::size_t i) { values_[i] = integrand(u_of(i)); };
+    if (count * terms_per_node_ > 2e5) {
+      parallel_for(count, threads_, body);
+    } else {
+      for (int i = 0; i < count; ++i) body(i);
+    }
+    for (const Sums& v : values_) add_scaled(node_sum_, v, 1.0);
+  }
+
+  const SizeDistribution& dist_;
+  std::complex<double> m_;
+  double size_factor_;  // x = size_factor · r
+  double lo_, width_;   // the interval in u
+  int threads_;
+  double terms_per_node_;
+  Sums node_sum_{0, 0, 0, 0};
+  std::vector<Sums> values_;
+  int intervals_ = 0;
+  Sums estimate_{};
+};
+
+// Changes are relative, except that a scattering or absorption share below
+// 1e-3 of extinction is converged in absolute terms against 1e-3 α_ext: the
+// weak absorption of water or oil droplets in the visible (α_abs ~ 1e-7 α_ext)
+// sits mostly in narrow Mie resonances that no affordable step resolves,
+// while ω = 1 − α_abs/α_ext is then known far better than any use needs.
+double relative_change(const Sums& now, const Sums& before) {
+  double worst = 0;
+  const double floor = 1e-3 * std::abs(now[0]);
+  for (int i = 0; i < 3; ++i)
+    worst = std::max(worst, std::abs(now[i] - before[i]) / std::max(std::abs(now[i]), floor));
+  const double g_now = now[1] > 0 ? now[3] / now[1] : 0.0;
+  const double g_before = before[1] > 0 ? before[3] / before[1] : 0.0;
+  return std::max(worst, std::abs(g_now - g_before));
+}
+
+// Halves the step until two successive halvings both change every quantity
+// by less than the tolerance; returns the larger of those two changes. One
+// agreement is not enough: while the step does not yet resolve the Mie ripple
+// (spacing Δx ≈ 1 in size parameter, Bohren & Huffman §11.4) successive
+// estimates scatter, and two of them can agree by chance; two in a row rarely
+// do.
+double refine(NestedTrapezoid& t, const BulkOpticsOptions& options, double wavelength_um) {
+  const int start_intervals = t.intervals();
+  double change = 0, last_change = 0;
+  for (;;) {
+    if (2 * t.intervals() > options.max_intervals)
+      throw Error(
+          fmt::format("bulk optics at {} µm: the size integral did not converge to {:g} within {} "
+                      "intervals (last change {:.2g})",
+                      wavelength_um, options.relative_tolerance, options.max_intervals, change));
+    const Sums previous = t.estimate();
+    t.halve();
+    last_change = change;
+    change = relative_change(t.estimate(), previous);
+    if (t.intervals() >= 4 * start_intervals &&
+        std::max(change, last_change) < options.relative_tolerance)
+      return std::max(change, last_change);
+  }
+}
+
+}  // namespace
+
+BulkOptics bulk_optics(const SizeDistribution& dist, double wavelength_um, std::complex<double> m,
+                       double density_g_cm3, const BulkOpticsOptions& options) {
+  const LnRadiusInterval iv = checked_interval(dist, wavelength_um, m, density_g_cm3, options);
   const double size_factor = 2.0 * kPi / wavelength_um;  // x = size_factor · r
   const double x_max = size_factor * std::exp(iv.hi);
   if (x_max > kMaxMieSizeParameter) {
@@ -208,92 +342,11 @@ BulkOptics bulk_optics(const SizeDistribution& dist, double wavelength_um, std::
                                  std::exp(iv.hi), x_max, wavelength_um, kMaxMieSizeParameter));
   }
 
-  // Integrand at u: p(u) r² (Q_ext, Q_sca, Q_abs, g Q_sca).
-  using Sums = std::array<double, 4>;
-  auto integrand = [&](double u) -> Sums {
-    const double r = std::exp(u);
-    const double w = std::exp(log_density_in_ln_r(dist, u)) * r * r;
-    if (w == 0.0) return {0, 0, 0, 0};  // underflowed far tail: Mie not needed
-    const MieEfficiencies q = mie_sphere(size_factor * r, m);
-    return {w * q.qext, w * q.qsca, w * q.qabs, w * q.g * q.qsca};
-  };
-  auto add = [](Sums& s, const Sums& v, double weight) {
-    for (int i = 0; i < 4; ++i) s[i] += weight * v[i];
-  };
-
-  // Trapezoidal rule in u with nested halving: T_{2M} = T_M / 2 + h_{2M} Σ f(new
-  // midpoints), so every evaluation is reused. `node_sum` is Σ' f (end nodes
-  // weighted ½) over the current nodes; the estimate is h · node_sum. The
-  // nodes of a level are evaluated in parallel and summed in index order, so
-  // the result does not depend on the thread count.
-  const double width = iv.hi - iv.lo;
-  Sums node_sum{0, 0, 0, 0};
-  std::vector<Sums> values;
-  // Threads pay off only for levels with enough work: starting a parallel
-  // loop costs tens of µs, a Mie evaluation ~50 ns per term. The bound uses
-  // the largest size parameter, so it overestimates the work.
-  const double terms_per_node = mie_term_count(x_max);
-  auto add_nodes = [&](int count, auto u_of) {
-    values.assign(count, Sums{});
-    auto body = [&](std::size_t i) { values[i] = integrand(u_of(i)); };
-    if (count * terms_per_node > 2e5) {
-      parallel_for(count, options.threads, body);
-    } else {
-      for (int i = 0; i < count; ++i) body(i);
-    }
-    for (const Sums& v : values) add(node_sum, v, 1.0);
-  };
-  const int start_intervals = options.fixed_intervals > 0 ? options.fixed_intervals : 128;
-  add_nodes(start_intervals + 1, [&](std::size_t i) {
-    return iv.lo + width * static_cast<double>(i) / start_intervals;
-  });
-  // The end nodes carry half weight (the integrands are negligible there anyway).
-  add(node_sum, values.front(), -0.5);
-  add(node_sum, values.back(), -0.5);
-  int intervals = start_intervals;
-  Sums estimate{}, previous{};
-  for (int i = 0; i < 4; ++i) estimate[i] = node_sum[i] * width / intervals;
-
-  // Changes are relative, except that a scattering or absorption share below
-  // 1e-3 of extinction is converged in absolute terms against 1e-3 α_ext: the
-  // weak absorption of water or oil droplets in the visible (α_abs ~ 1e-7 α_ext)
-  // sits mostly in narrow Mie resonances that no affordable step resolves,
-  // while ω = 1 − α_abs/α_ext is then known far better than any use needs.
-  auto relative_change = [](const Sums& now, const Sums& before) {
-    double worst = 0;
-    const double floor = 1e-3 * std::abs(now[0]);
-    for (int i = 0; i < 3; ++i)
-      worst = std::max(worst, std::abs(now[i] - before[i]) / std::max(std::abs(now[i]), floor));
-    const double g_now = now[1] > 0 ? now[3] / now[1] : 0.0;
-    const double g_before = before[1] > 0 ? before[3] / before[1] : 0.0;
-    return std::max(worst, std::abs(g_now - g_before));
-  };
-
-  // Converged when two successive halvings both change every quantity by less
-  // than the tolerance. One agreement is not enough: while the step does not
-  // yet resolve the Mie ripple (spacing Δx ≈ 1 in size parameter, Bohren &
-  // Huffman §11.4) successive estimates scatter, and two of them can agree by
-  // chance; two in a row rarely do.
-  double change = 0, last_change = 0;
-  if (options.fixed_intervals == 0) {
-    for (;;) {
-      if (2 * intervals > options.max_intervals)
-        throw Error(fmt::format(
-            "bulk optics at {} µm: the size integral did not converge to {:g} within {} "
-            "intervals (last change {:.2g})",
-            wavelength_um, options.relative_tolerance, options.max_intervals, change));
-      const double h_new = width / (2 * intervals);
-      add_nodes(intervals, [&](std::size_t i) { return iv.lo + h_new * (2.0 * i + 1.0); });
-      intervals *= 2;
-      previous = estimate;
-      for (int i = 0; i < 4; ++i) estimate[i] = node_sum[i] * h_new;
-      last_change = change;
-      change = relative_change(estimate, previous);
-      if (intervals >= 4 * start_intervals &&
-          std::max(change, last_change) < options.relative_tolerance)
-        break;
-    }
-  }
+  NestedTrapezoid trapezoid(dist, m, size_factor, x_max, iv, options.threads);
+  trapezoid.start(options.fixed_intervals > 0 ? options.fixed_intervals : 128);
+  const double change =
+      options.fixed_intervals == 0 ? refine(trapezoid, options, wavelength_um) : 0.0;
+  const Sums& estimate = trapezoid.estimate();
 
   // α = (3/(4ρ)) ∫ Q r² n dr / ∫ r³ n dr; the denominator in closed form.
   const double scale = 3.0 / (4.0 * density_g_cm3 * radius_moment_um(dist, 3.0));
@@ -303,8 +356,8 @@ BulkOptics bulk_optics(const SizeDistribution& dist, double wavelength_um, std::
   out.mass_absorption_m2_g = scale * estimate[2];
   out.single_scattering_albedo = estimate[0] > 0 ? estimate[1] / estimate[0] : 0.0;
   out.asymmetry = estimate[1] > 0 ? estimate[3] / estimate[1] : 0.0;
-  out.intervals = intervals;
-  out.relative_change = std::max(change, last_change);
+  out.intervals = trapezoid.intervals();
+  out.relative_change = change;
   return out;
 }
 

@@ -99,35 +99,30 @@ void write_manifest(const std::filesystem::path& path, const PrepareReport& r) {
   if (!out) throw Error("cannot write " + path.string());
 }
 
-}  // namespace
+void say(const PrepareOptions& options, const std::string& line) {
+  if (options.progress) options.progress(line);
+}
 
-PrepareReport prepare_cloud(const std::filesystem::path& config_path,
-                            const std::filesystem::path& out_dir, const PrepareOptions& options) {
-  namespace fs = std::filesystem;
-  const std::string file = config_path.string();
-  const nlohmann::json doc = read_json_file(config_path);
-  JsonObject root(doc, file, "");
-  PrepareReport report;
-  auto say = [&](const std::string& line) {
-    if (options.progress) options.progress(line);
-  };
-
-  if (fs::exists(out_dir) && !(fs::is_directory(out_dir) && fs::is_empty(out_dir)))
-    throw InputError(out_dir.string(), "",
-                     "exists and is not an empty folder; remove it or choose another");
-
-  // --- What the cloud is made of.
-  root.string_or("description", "");
-  const std::string material_name = root.string("material");
+// What the cloud is made of: the material, the humidity and the wavelengths
+// (into the report).
+struct MaterialSettings {
   Material material;
+  double humidity = 0;
+};
+
+MaterialSettings read_material_settings(JsonObject& root, PrepareReport& report) {
+  const std::string& file = root.file();
+  MaterialSettings m;
+  const std::string material_name = root.string("material");
   try {
-    material = load_material_by_name(material_name);
+    m.material = load_material_by_name(material_name);
   } catch (const InputError& e) {
     throw InputError(file, "/material", e.what());
   }
-  report.material = material.name;
-  const double humidity = root.number_or("relative_humidity", 0.0);
-  if (!(humidity >= 0 && humidity < 1)) throw root.error("relative_humidity", "must lie in [0, 1)");
+  report.material = m.material.name;
+  m.humidity = root.number_or("relative_humidity", 0.0);
+  if (!(m.humidity >= 0 && m.humidity < 1))
+    throw root.error("relative_humidity", "must lie in [0, 1)");
   report.wavelengths_um = root.numbers("wavelengths_um");
   if (report.wavelengths_um.empty())
     throw root.error("wavelengths_um", "needs at least one wavelength");
@@ -136,81 +131,114 @@ PrepareReport prepare_cloud(const std::filesystem::path& config_path,
         (i > 0 && !(report.wavelengths_um[i] > report.wavelengths_um[i - 1])))
       throw InputError(file, fmt::format("/wavelengths_um/{}", i),
                        "must be > 0 µm and strictly increasing");
+  return m;
+}
 
-  // --- Which keyframe form to write (docs/formats.md): both read to the same grids.
-  const std::string output_form = root.string_or("output_form", "spectral");
-  if (output_form != "spectral" && output_form != "species")
-    throw root.error("output_form",
-                     fmt::format("unknown form '{}' (expected spectral or species)", output_form));
-  report.output_form = output_form;
-
-  // --- Concentrations over time.
-  const auto t0 = Clock::now();
-  const std::string source = root.string("source");
+// Concentrations over time, from one of the sources, and what the keyframes
+// need to know of their origin.
+struct Concentrations {
   ConcentrationSeries series;
-  std::optional<double> burn_end_s;
+  std::optional<double> burn_end_s;  // dispersion: when the last device stops
   double ambient_k = 288.15;
+};
+
+Concentrations dispersion_concentrations(JsonObject& root, const PrepareOptions& options,
+                                         PrepareReport& report) {
+  Concentrations c;
+  DispersionConfig config = parse_dispersion_config(root.object("dispersion"));
+  config.source = root.file();
+  const std::vector<double> times = parse_times(root);
+  const double voxel = root.positive("voxel_size_m");
+  c.ambient_k = config.ambient_temperature_k;
+  double end = 0;
+  for (const SmokeDevice& d : config.devices) {
+    end = std::max(end, d.start_s + d.burn_time_s);
+    report.released_mass_g += d.released_mass_g();
+  }
+  c.burn_end_s = end;
+  say(options,
+      fmt::format("dispersion: {} devices, {} frames from {} to {} s at {} m voxels",
+                  config.devices.size(), times.size(), times.front(), times.back(), voxel));
+  c.series = dispersion_series(config, times, voxel, options.threads);
+  return c;
+}
+
+// A file the configuration names: a relative path is relative to the
+// configuration's folder.
+std::filesystem::path config_relative(const std::filesystem::path& config_path,
+                                      const std::string& name) {
+  std::filesystem::path p = name;
+  if (p.is_relative()) p = config_path.parent_path() / p;
+  return p;
+}
+
+Concentrations vtk_concentrations(JsonObject& root, const std::filesystem::path& config_path,
+                                  const PrepareOptions& options) {
+  Concentrations c;
+  JsonObject vtk = root.object("vtk");
+  VtkArrayNames names;
+  names.concentration = vtk.string_or("concentration", names.concentration);
+  names.temperature = vtk.string_or("temperature", "");
+  names.concentration_to_g_m3 = vtk.positive_or("concentration_to_g_m3", 1.0);
+  const auto& frames = vtk.array("frames");
+  std::vector<std::pair<double, std::string>> time_and_path;
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    JsonObject f(frames[i], root.file(), fmt::format("{}/{}", vtk.path_of("frames"), i));
+    const double t = f.number("time_s");
+    time_and_path.emplace_back(t, config_relative(config_path, f.string("file")).string());
+    f.finish();
+  }
+  c.ambient_k = vtk.positive_or("ambient_temperature_k", c.ambient_k);
+  vtk.finish();
+  say(options, fmt::format("VTK: {} frames", time_and_path.size()));
+  c.series = read_vtk_series(time_and_path, names);
+  return c;
+}
+
+Concentrations netcdf_concentrations(JsonObject& root, const std::filesystem::path& config_path,
+                                     const PrepareOptions& options) {
+  Concentrations c;
+  JsonObject nc = root.object("netcdf");
+  NetcdfReadOptions o;
+  const std::filesystem::path p = config_relative(config_path, nc.string("file"));
+  o.concentration = nc.string_or("concentration", o.concentration);
+  o.temperature = nc.string_or("temperature", "");
+  o.concentration_units_if_missing = nc.string_or("concentration_units_if_missing", "");
+  o.missing_concentration_as_zero = nc.boolean_or("missing_concentration_as_zero", false);
+  c.ambient_k = nc.positive_or("ambient_temperature_k", c.ambient_k);
+  nc.finish();
+  say(options, "NetCDF: " + p.string());
+  c.series = read_netcdf_cf(p, o);
+  return c;
+}
+
+// The "source" the configuration names; at least two frames. Fills in the
+// report's times and grid.
+Concentrations read_concentrations(JsonObject& root, const std::filesystem::path& config_path,
+                                   const PrepareOptions& options, PrepareReport& report) {
+  const std::string source = root.string("source");
+  Concentrations c;
   if (source == "dispersion") {
-    DispersionConfig config = parse_dispersion_config(root.object("dispersion"));
-    config.source = file;
-    const std::vector<double> times = parse_times(root);
-    const double voxel = root.positive("voxel_size_m");
-    ambient_k = config.ambient_temperature_k;
-    double end = 0;
-    for (const SmokeDevice& d : config.devices) {
-      end = std::max(end, d.start_s + d.burn_time_s);
-      report.released_mass_g += d.released_mass_g();
-    }
-    burn_end_s = end;
-    say(fmt::format("dispersion: {} devices, {} frames from {} to {} s at {} m voxels",
-                    config.devices.size(), times.size(), times.front(), times.back(), voxel));
-    series = dispersion_series(config, times, voxel, options.threads);
+    c = dispersion_concentrations(root, options, report);
   } else if (source == "vtk") {
-    JsonObject vtk = root.object("vtk");
-    VtkArrayNames names;
-    names.concentration = vtk.string_or("concentration", names.concentration);
-    names.temperature = vtk.string_or("temperature", "");
-    names.concentration_to_g_m3 = vtk.positive_or("concentration_to_g_m3", 1.0);
-    const auto& frames = vtk.array("frames");
-    std::vector<std::pair<double, std::string>> time_and_path;
-    for (std::size_t i = 0; i < frames.size(); ++i) {
-      JsonObject f(frames[i], file, fmt::format("{}/{}", vtk.path_of("frames"), i));
-      const double t = f.number("time_s");
-      fs::path p = f.string("file");
-      if (p.is_relative()) p = config_path.parent_path() / p;
-      time_and_path.emplace_back(t, p.string());
-      f.finish();
-    }
-    ambient_k = vtk.positive_or("ambient_temperature_k", ambient_k);
-    vtk.finish();
-    say(fmt::format("VTK: {} frames", time_and_path.size()));
-    series = read_vtk_series(time_and_path, names);
+    c = vtk_concentrations(root, config_path, options);
   } else if (source == "netcdf") {
-    JsonObject nc = root.object("netcdf");
-    NetcdfReadOptions o;
-    fs::path p = nc.string("file");
-    if (p.is_relative()) p = config_path.parent_path() / p;
-    o.concentration = nc.string_or("concentration", o.concentration);
-    o.temperature = nc.string_or("temperature", "");
-    o.concentration_units_if_missing = nc.string_or("concentration_units_if_missing", "");
-    o.missing_concentration_as_zero = nc.boolean_or("missing_concentration_as_zero", false);
-    ambient_k = nc.positive_or("ambient_temperature_k", ambient_k);
-    nc.finish();
-    say("NetCDF: " + p.string());
-    series = read_netcdf_cf(p, o);
+    c = netcdf_concentrations(root, config_path, options);
   } else {
     throw root.error(
         "source", fmt::format("unknown source '{}' (expected dispersion, vtk or netcdf)", source));
   }
-  if (series.frames.size() < 2)
-    throw InputError(file, "/source",
+  if (c.series.frames.size() < 2)
+    throw InputError(root.file(), "/source",
                      "needs at least two frames (a lifecycle needs two keyframes)");
-  report.seconds_concentrations = since(t0);
-  for (const auto& f : series.frames) report.times_s.push_back(f.time_s);
-  report.dims = series.frames[0].concentration_g_m3.dims;
-  report.voxel_size_m = series.frames[0].concentration_g_m3.placement.voxel_size_m;
+  for (const auto& f : c.series.frames) report.times_s.push_back(f.time_s);
+  report.dims = c.series.frames[0].concentration_g_m3.dims;
+  report.voxel_size_m = c.series.frames[0].concentration_g_m3.placement.voxel_size_m;
+  return c;
+}
 
-  // --- The lifecycle: given, or suggested from the timing.
+// The lifecycle: given, or suggested from the timing; validated.
+void read_lifecycle(JsonObject& root, std::optional<double> burn_end_s, PrepareReport& report) {
   if (auto lc = root.optional_object("lifecycle")) {
     report.lifecycle.init_end = static_cast<int>(lc->integer("init_end"));
     report.lifecycle.loop_start = static_cast<int>(lc->integer("loop_start"));
@@ -222,14 +250,16 @@ PrepareReport prepare_cloud(const std::filesystem::path& config_path,
   } else {
     report.lifecycle = suggest_lifecycle(report.times_s, burn_end_s);
   }
-  Lifecycle(report.times_s, report.lifecycle, file + ": /lifecycle");  // validates
-  root.finish();
+  Lifecycle(report.times_s, report.lifecycle, root.file() + ": /lifecycle");  // validates
+}
 
-  // --- Optics and keyframes, into a temporary sibling folder.
-  const auto t1 = Clock::now();
-  const SpeciesOptics optics =
-      species_optics(material, report.wavelengths_um, humidity, options.threads, report.warnings);
-  report.seconds_optics = since(t1);
+// The keyframes and the manifest, written into a temporary sibling folder
+// that is renamed to `out_dir` when complete (and removed on failure).
+void write_cloud(const std::filesystem::path& out_dir, const Concentrations& c,
+                 const SpeciesOptics& optics, const std::string& output_form,
+                 const std::string& file, const PrepareOptions& options, PrepareReport& report) {
+  namespace fs = std::filesystem;
+  const ConcentrationSeries& series = c.series;
   const fs::path parent = out_dir.parent_path().empty() ? fs::path(".") : out_dir.parent_path();
   fs::create_directories(parent);
   const fs::path temp =
@@ -238,33 +268,71 @@ PrepareReport prepare_cloud(const std::filesystem::path& config_path,
   fs::create_directories(temp);
   try {
     const auto t2 = Clock::now();
-    const std::map<std::string, std::string> meta{{"material", material.name},
+    const std::map<std::string, std::string> meta{{"material", report.material},
                                                   {"source", series.source},
                                                   {"command_line", options.command_line}};
     for (std::size_t i = 0; i < series.frames.size(); ++i) {
       const ConcentrationFrame& frame = series.frames[i];
       const std::string name = fmt::format("keyframe_{:04d}.vdb", i);
       if (output_form == "species")
-        write_species_keyframe(temp / name, species_cloud(frame, optics, ambient_k, file),
+        write_species_keyframe(temp / name, species_cloud(frame, optics, c.ambient_k, file),
                                frame.time_s, meta);
       else
-        write_cloud_keyframe(temp / name, voxelise(frame, optics, ambient_k, file), frame.time_s,
+        write_cloud_keyframe(temp / name, voxelise(frame, optics, c.ambient_k, file), frame.time_s,
                              meta);
       report.keyframes.push_back(out_dir / name);
-      say(fmt::format("keyframe {} of {} at {} s", i + 1, series.frames.size(), frame.time_s));
+      say(options,
+          fmt::format("keyframe {} of {} at {} s", i + 1, series.frames.size(), frame.time_s));
     }
     write_manifest(temp / "cloud.json", report);
     read_cloud_manifest(temp / "cloud.json");  // what we wrote must read back
     report.seconds_keyframes = since(t2);
     for (const auto& e : fs::directory_iterator(temp))
       report.bytes_written += fs::file_size(e.path());
-    if (fs::exists(out_dir)) fs::remove(out_dir);  // an empty folder, checked above
+    if (fs::exists(out_dir)) fs::remove(out_dir);  // an empty folder, checked before
     fs::rename(temp, out_dir);
   } catch (...) {
     std::error_code ec;
     fs::remove_all(temp, ec);
     throw;
   }
+}
+
+}  // namespace
+
+PrepareReport prepare_cloud(const std::filesystem::path& config_path,
+                            const std::filesystem::path& out_dir, const PrepareOptions& options) {
+  namespace fs = std::filesystem;
+  const std::string file = config_path.string();
+  const nlohmann::json doc = read_json_file(config_path);
+  JsonObject root(doc, file, "");
+  PrepareReport report;
+
+  if (fs::exists(out_dir) && !(fs::is_directory(out_dir) && fs::is_empty(out_dir)))
+    throw InputError(out_dir.string(), "",
+                     "exists and is not an empty folder; remove it or choose another");
+
+  root.string_or("description", "");
+  const MaterialSettings material = read_material_settings(root, report);
+
+  // Which keyframe form to write (docs/formats.md): both read to the same grids.
+  const std::string output_form = root.string_or("output_form", "spectral");
+  if (output_form != "spectral" && output_form != "species")
+    throw root.error("output_form",
+                     fmt::format("unknown form '{}' (expected spectral or species)", output_form));
+  report.output_form = output_form;
+
+  const auto t0 = Clock::now();
+  const Concentrations concentrations = read_concentrations(root, config_path, options, report);
+  report.seconds_concentrations = since(t0);
+  read_lifecycle(root, concentrations.burn_end_s, report);
+  root.finish();
+
+  const auto t1 = Clock::now();
+  const SpeciesOptics optics = species_optics(material.material, report.wavelengths_um,
+                                              material.humidity, options.threads, report.warnings);
+  report.seconds_optics = since(t1);
+  write_cloud(out_dir, concentrations, optics, output_form, file, options, report);
   report.manifest = out_dir / "cloud.json";
   return report;
 }

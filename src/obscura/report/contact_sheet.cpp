@@ -170,67 +170,82 @@ std::vector<std::size_t> contact_sheet_frames(std::size_t frame_count, std::size
   return out;
 }
 
-ContactSheetRaster render_contact_sheet(const ContactSheet& sheet) {
-  validate(sheet);
-  ContactSheetRaster out;
-  const std::size_t rows = sheet.rows.size(), cols = sheet.times_s.size();
+namespace {
 
-  // Texts and their sizes, measured on a scratch surface.
+// The sheet's texts and the sizes they need, measured on a scratch surface.
+struct SheetText {
+  cairo_font_extents_t title_font, label_font, detail_font;
+  double title_w = 0;                // px; 0 without a title
+  int title_h = 0;                   // px, with the gap below; 0 without a title
+  std::vector<std::string> headers;  // "t = … s", per column
+  double header_w = 0;               // widest header, px
+  std::vector<std::string> ranges;   // colour range with units, per row
+  int header_h = 0;                  // column headers with their gap, px
+  int label_block_h = 0;             // a row's label, quantity, range and bar, px
+  int label_col = 0;                 // the row labels' column with its gap, px
+};
+
+// Measures every text; fills in out.row_min and out.row_max (the colour
+// ranges the range texts state).
+SheetText measure_texts(const ContactSheet& sheet, ContactSheetRaster& out) {
+  SheetText text;
   SurfacePtr scratch(cairo_image_surface_create(CAIRO_FORMAT_ARGB32, 1, 1));
   CairoPtr measure(cairo_create(scratch.get()));
   set_font(measure.get(), kTitleFontSize);
-  const cairo_font_extents_t title_font = font_extents(measure.get());
-  const double title_w = sheet.title.empty() ? 0 : text_advance(measure.get(), sheet.title);
-  const int title_h =
-      sheet.title.empty() ? 0 : static_cast<int>(std::ceil(title_font.height)) + kTitleGap;
+  text.title_font = font_extents(measure.get());
+  text.title_w = sheet.title.empty() ? 0 : text_advance(measure.get(), sheet.title);
+  text.title_h =
+      sheet.title.empty() ? 0 : static_cast<int>(std::ceil(text.title_font.height)) + kTitleGap;
   set_font(measure.get(), kLabelFontSize);
-  const cairo_font_extents_t label_font = font_extents(measure.get());
-  std::vector<std::string> headers;
-  double header_w = 0;
+  text.label_font = font_extents(measure.get());
   for (double t : sheet.times_s) {
-    headers.push_back(fmt::format("t = {:.6g} s", t));
-    header_w = std::max(header_w, text_advance(measure.get(), headers.back()));
+    text.headers.push_back(fmt::format("t = {:.6g} s", t));
+    text.header_w = std::max(text.header_w, text_advance(measure.get(), text.headers.back()));
   }
   double label_w = kBarWidth;
   for (const ContactSheetRow& row : sheet.rows)
     label_w = std::max(label_w, text_advance(measure.get(), row.label));
   set_font(measure.get(), kDetailFontSize);
-  const cairo_font_extents_t detail_font = font_extents(measure.get());
-  std::vector<std::string> ranges;
+  text.detail_font = font_extents(measure.get());
   for (const ContactSheetRow& row : sheet.rows) {
     const auto [lo, hi] = row_range(row);
     out.row_min.push_back(lo);
     out.row_max.push_back(hi);
-    ranges.push_back(row_range_text(row, lo, hi));
+    text.ranges.push_back(row_range_text(row, lo, hi));
     label_w = std::max({label_w, text_advance(measure.get(), row.quantity),
-                        text_advance(measure.get(), ranges.back())});
+                        text_advance(measure.get(), text.ranges.back())});
   }
-  const int header_h = static_cast<int>(std::ceil(label_font.height)) + kHeaderGap;
-  const int label_block_h =
-      static_cast<int>(std::ceil(label_font.height + 2 * detail_font.height)) + 3 * kLineGap +
-      kBarHeight;
-  const int label_col = static_cast<int>(std::ceil(label_w)) + kLabelGap;
+  text.header_h = static_cast<int>(std::ceil(text.label_font.height)) + kHeaderGap;
+  text.label_block_h =
+      static_cast<int>(std::ceil(text.label_font.height + 2 * text.detail_font.height)) +
+      3 * kLineGap + kBarHeight;
+  text.label_col = static_cast<int>(std::ceil(label_w)) + kLabelGap;
+  return text;
+}
 
-  // The largest cell height up to the requested one that keeps the sheet
-  // within the cap.
+// The largest cell height up to the requested one that keeps the sheet
+// within the cap: sets the canvas size, cell height and widths and the cells'
+// positions in `out`, and returns the column width, px.
+int fit_cells(const ContactSheet& sheet, const SheetText& text, ContactSheetRaster& out) {
+  const std::size_t rows = sheet.rows.size(), cols = sheet.times_s.size();
   std::vector<std::pair<int, int>> sizes;
   for (const ContactSheetRow& row : sheet.rows) sizes.push_back(row_image_size(row));
   int col_w = 0, row_h = 0;
   auto layout = [&](int h) {
     out.cell_widths.clear();
-    col_w = static_cast<int>(std::ceil(header_w));
+    col_w = static_cast<int>(std::ceil(text.header_w));
     for (const auto& [w, hh] : sizes) {
       const int cw =
           hh > 0 ? std::max(1, static_cast<int>(std::lround(static_cast<double>(w) * h / hh))) : 0;
       out.cell_widths.push_back(cw);
       col_w = std::max(col_w, cw);
     }
-    row_h = std::max(h, label_block_h);
-    out.width =
-        std::max(2 * kMargin + label_col + static_cast<int>(cols) * (col_w + kCellGap) - kCellGap,
-                 2 * kMargin + static_cast<int>(std::ceil(title_w)));
-    out.height =
-        2 * kMargin + title_h + header_h + static_cast<int>(rows) * (row_h + kCellGap) - kCellGap;
+    row_h = std::max(h, text.label_block_h);
+    out.width = std::max(
+        2 * kMargin + text.label_col + static_cast<int>(cols) * (col_w + kCellGap) - kCellGap,
+        2 * kMargin + static_cast<int>(std::ceil(text.title_w)));
+    out.height = 2 * kMargin + text.title_h + text.header_h +
+                 static_cast<int>(rows) * (row_h + kCellGap) - kCellGap;
     return out.width <= sheet.max_size_px && out.height <= sheet.max_size_px;
   };
   int h = sheet.cell_height_px;
@@ -242,22 +257,27 @@ ContactSheetRaster render_contact_sheet(const ContactSheet& sheet) {
     h = std::max(kMinCellHeight, static_cast<int>(h * 0.9));
   }
   out.cell_height = h;
-  const int grid_x = kMargin + label_col, grid_y = kMargin + title_h + header_h;
+  const int grid_x = kMargin + text.label_col, grid_y = kMargin + text.title_h + text.header_h;
   for (std::size_t c = 0; c < cols; ++c)
     out.cell_x.push_back(grid_x + static_cast<int>(c) * (col_w + kCellGap));
   for (std::size_t r = 0; r < rows; ++r)
     out.cell_y.push_back(grid_y + static_cast<int>(r) * (row_h + kCellGap));
+  return col_w;
+}
 
-  SurfacePtr surface = cairo_canvas::create_surface(out.width, out.height, /*white=*/true);
-  // Cells and colour bars straight into the surface (no filtering), text after.
-  const cairo_canvas::PixelWriter canvas(surface.get());
+// Cells and colour bars straight into the surface (no filtering).
+void paint_cells(cairo_surface_t* surface, const ContactSheet& sheet, const SheetText& text,
+                 int col_w, const ContactSheetRaster& out) {
+  const cairo_canvas::PixelWriter canvas(surface);
+  const int h = out.cell_height;
   const int bar_y_offset =
-      static_cast<int>(std::ceil(label_font.height + 2 * detail_font.height)) + 3 * kLineGap;
-  for (std::size_t r = 0; r < rows; ++r) {
+      static_cast<int>(std::ceil(text.label_font.height + 2 * text.detail_font.height)) +
+      3 * kLineGap;
+  for (std::size_t r = 0; r < sheet.rows.size(); ++r) {
     const ContactSheetRow& row = sheet.rows[r];
     const double lo = out.row_min[r], span = out.row_max[r] - lo;
     const int cw = out.cell_widths[r];
-    for (std::size_t c = 0; c < cols; ++c) {
+    for (std::size_t c = 0; c < sheet.times_s.size(); ++c) {
       const ContactSheetCell& cell = row.cells[c];
       if (cell.width == 0) continue;
       const std::vector<float> pixels = resample_image(cell.width, cell.height, cell.values, cw, h);
@@ -278,34 +298,51 @@ ContactSheetRaster render_contact_sheet(const ContactSheet& sheet) {
         canvas.put(kMargin + x, out.cell_y[r] + bar_y_offset + y, rgb);
     }
   }
-  cairo_surface_mark_dirty(surface.get());
+  cairo_surface_mark_dirty(surface);
+}
 
-  CairoPtr cr(cairo_create(surface.get()));
-  cairo_set_source_rgb(cr.get(), 0, 0, 0);
+// The title, the column headers and each row's label, quantity and range.
+void draw_texts(cairo_t* cr, const ContactSheet& sheet, const SheetText& text, int col_w,
+                const ContactSheetRaster& out) {
+  cairo_set_source_rgb(cr, 0, 0, 0);
   if (!sheet.title.empty()) {
-    set_font(cr.get(), kTitleFontSize);
-    cairo_move_to(cr.get(), kMargin, kMargin + title_font.ascent);
-    cairo_show_text(cr.get(), sheet.title.c_str());
+    set_font(cr, kTitleFontSize);
+    cairo_move_to(cr, kMargin, kMargin + text.title_font.ascent);
+    cairo_show_text(cr, sheet.title.c_str());
   }
-  set_font(cr.get(), kLabelFontSize);
-  for (std::size_t c = 0; c < cols; ++c) {
-    const double w = text_advance(cr.get(), headers[c]);
-    cairo_move_to(cr.get(), out.cell_x[c] + (col_w - w) / 2, kMargin + title_h + label_font.ascent);
-    cairo_show_text(cr.get(), headers[c].c_str());
+  set_font(cr, kLabelFontSize);
+  for (std::size_t c = 0; c < sheet.times_s.size(); ++c) {
+    const double w = text_advance(cr, text.headers[c]);
+    cairo_move_to(cr, out.cell_x[c] + (col_w - w) / 2,
+                  kMargin + text.title_h + text.label_font.ascent);
+    cairo_show_text(cr, text.headers[c].c_str());
   }
-  for (std::size_t r = 0; r < rows; ++r) {
-    double y = out.cell_y[r] + label_font.ascent;
-    set_font(cr.get(), kLabelFontSize);
-    cairo_move_to(cr.get(), kMargin, y);
-    cairo_show_text(cr.get(), sheet.rows[r].label.c_str());
-    set_font(cr.get(), kDetailFontSize);
-    y += label_font.descent + kLineGap + detail_font.ascent;
-    cairo_move_to(cr.get(), kMargin, y);
-    cairo_show_text(cr.get(), sheet.rows[r].quantity.c_str());
-    y += detail_font.height + kLineGap;
-    cairo_move_to(cr.get(), kMargin, y);
-    cairo_show_text(cr.get(), ranges[r].c_str());
+  for (std::size_t r = 0; r < sheet.rows.size(); ++r) {
+    double y = out.cell_y[r] + text.label_font.ascent;
+    set_font(cr, kLabelFontSize);
+    cairo_move_to(cr, kMargin, y);
+    cairo_show_text(cr, sheet.rows[r].label.c_str());
+    set_font(cr, kDetailFontSize);
+    y += text.label_font.descent + kLineGap + text.detail_font.ascent;
+    cairo_move_to(cr, kMargin, y);
+    cairo_show_text(cr, sheet.rows[r].quantity.c_str());
+    y += text.detail_font.height + kLineGap;
+    cairo_move_to(cr, kMargin, y);
+    cairo_show_text(cr, text.ranges[r].c_str());
   }
+}
+
+}  // namespace
+
+ContactSheetRaster render_contact_sheet(const ContactSheet& sheet) {
+  validate(sheet);
+  ContactSheetRaster out;
+  const SheetText text = measure_texts(sheet, out);
+  const int col_w = fit_cells(sheet, text, out);
+  SurfacePtr surface = cairo_canvas::create_surface(out.width, out.height, /*white=*/true);
+  paint_cells(surface.get(), sheet, text, col_w, out);  // text after: on top
+  CairoPtr cr(cairo_create(surface.get()));
+  draw_texts(cr.get(), sheet, text, col_w, out);
   if (cairo_status(cr.get()) != CAIRO_STATUS_SUCCESS)
     throw Error(fmt::format("cairo: drawing the contact sheet failed: {}",
                             cairo_status_to_string(cairo_status(cr.get()))));

@@ -102,110 +102,142 @@ std::pair<double, double> value_range(const std::string& file, const std::vector
   return {lo, hi};
 }
 
-PreviewRaster render(const std::string& file, int width, int height,
-                     const std::vector<float>& values, const PreviewOptions& options) {
-  validate_image(file, width, height, values);
-  PreviewRaster out;
-  std::tie(out.min, out.max) = value_range(file, values, options);
-  const double span = out.max - out.min;
-
-  out.scale =
-      std::max(1, std::min((kTargetImageHeight + height - 1) / height, kMaxImageWidth / width));
-  const int image_w = width * out.scale;
-  const int image_h = height * out.scale;
-
-  // Ticks as (fraction of the bar from the bottom, label).
+// Colour bar ticks as (fraction of the bar from the bottom, label).
+std::vector<std::pair<double, std::string>> bar_ticks(double min, double max) {
+  const double span = max - min;
   std::vector<std::pair<double, std::string>> ticks;
   for (int i = 0; i < kTickCount; ++i) {
     const double fraction = static_cast<double>(i) / (kTickCount - 1);
-    ticks.emplace_back(fraction, fmt::format("{:.4g}", out.min + span * fraction));
+    ticks.emplace_back(fraction, fmt::format("{:.4g}", min + span * fraction));
   }
   // A constant image (or a very narrow range) would repeat one label five
   // times; a single label in the middle says the same without the clutter.
   if (ticks.front().second == ticks.back().second) ticks = {ticks[kTickCount / 2]};
+  return ticks;
+}
 
-  // Measure the text on a scratch surface to size the canvas.
+// Where the parts of a preview go, px, and the fonts they are set in.
+struct PreviewLayout {
+  cairo_font_extents_t title_font, tick_font, units_font;
+  int image_w = 0, image_h = 0;  // the upscaled image
+  int bar_x = 0, label_x = 0, units_x = 0;
+  double units_len = 0;  // length of the units label along the bar
+};
+
+// Measures the text on a scratch surface to size the canvas: sets the
+// canvas size and the image position in `out`.
+PreviewLayout lay_out(const PreviewOptions& options,
+                      const std::vector<std::pair<double, std::string>>& ticks, int image_w,
+                      int image_h, PreviewRaster& out) {
+  PreviewLayout l;
+  l.image_w = image_w;
+  l.image_h = image_h;
   SurfacePtr scratch(cairo_image_surface_create(CAIRO_FORMAT_ARGB32, 1, 1));
   CairoPtr measure(cairo_create(scratch.get()));
   set_font(measure.get(), kTitleFontSize);
-  const cairo_font_extents_t title_font = font_extents(measure.get());
+  l.title_font = font_extents(measure.get());
   const double title_w = options.title.empty() ? 0 : text_advance(measure.get(), options.title);
   const int title_h =
-      options.title.empty() ? 0 : static_cast<int>(std::ceil(title_font.height)) + kTitleGap;
+      options.title.empty() ? 0 : static_cast<int>(std::ceil(l.title_font.height)) + kTitleGap;
   set_font(measure.get(), kTickFontSize);
-  const cairo_font_extents_t tick_font = font_extents(measure.get());
+  l.tick_font = font_extents(measure.get());
   double label_w = 0;
   for (const auto& tick : ticks)
     label_w = std::max(label_w, text_advance(measure.get(), tick.second));
   set_font(measure.get(), kUnitsFontSize);
-  const cairo_font_extents_t units_font = font_extents(measure.get());
-  const double units_len = options.units.empty() ? 0 : text_advance(measure.get(), options.units);
+  l.units_font = font_extents(measure.get());
+  l.units_len = options.units.empty() ? 0 : text_advance(measure.get(), options.units);
   const int units_thickness =
-      options.units.empty() ? 0 : static_cast<int>(std::ceil(units_font.height));
+      options.units.empty() ? 0 : static_cast<int>(std::ceil(l.units_font.height));
 
   out.image_x = kMargin;
   out.image_y = kMargin + title_h;
-  const int bar_x = out.image_x + image_w + kBarGap;
-  const int label_x = bar_x + kBarWidth + kTickLength + kLabelGap;
-  const int units_x = label_x + static_cast<int>(std::ceil(label_w)) + kUnitsGap;
-  out.width = std::max(units_x + units_thickness + kMargin,
+  l.bar_x = out.image_x + image_w + kBarGap;
+  l.label_x = l.bar_x + kBarWidth + kTickLength + kLabelGap;
+  l.units_x = l.label_x + static_cast<int>(std::ceil(label_w)) + kUnitsGap;
+  out.width = std::max(l.units_x + units_thickness + kMargin,
                        2 * kMargin + static_cast<int>(std::ceil(title_w)));
   out.height = out.image_y + image_h + kMargin;
+  return l;
+}
 
-  SurfacePtr surface = cairo_canvas::create_surface(out.width, out.height, /*white=*/true);
-  CairoPtr cr(cairo_create(surface.get()));
-
-  // Pixels are written straight into the surface: nearest-neighbour upscale
-  // and the colour bar need no resampling, and this avoids cairo filtering.
-  const cairo_canvas::PixelWriter canvas(surface.get());
+// Pixels are written straight into the surface: nearest-neighbour upscale
+// and the colour bar need no resampling, and this avoids cairo filtering.
+void paint_image_and_bar(cairo_surface_t* surface, int width, const std::vector<float>& values,
+                         const PreviewOptions& options, const PreviewLayout& l,
+                         const PreviewRaster& out) {
+  const double span = out.max - out.min;
+  const cairo_canvas::PixelWriter canvas(surface);
   auto put = [&](int x, int y, std::array<std::uint8_t, 3> c) { canvas.put(x, y, c); };
-  for (int y = 0; y < image_h; ++y) {
+  for (int y = 0; y < l.image_h; ++y) {
     const float* row = values.data() + static_cast<size_t>(y / out.scale) * width;
-    for (int x = 0; x < image_w; ++x) {
+    for (int x = 0; x < l.image_w; ++x) {
       const float v = row[x / out.scale];
       put(out.image_x + x, out.image_y + y,
           std::isnan(v) ? std::array<std::uint8_t, 3>{kNanGrey, kNanGrey, kNanGrey}
                         : colormap_rgb(options.colormap, (v - out.min) / span));
     }
   }
-  for (int y = 0; y < image_h; ++y) {
-    const auto c = colormap_rgb(options.colormap, 1.0 - (y + 0.5) / image_h);
-    for (int x = 0; x < kBarWidth; ++x) put(bar_x + x, out.image_y + y, c);
+  for (int y = 0; y < l.image_h; ++y) {
+    const auto c = colormap_rgb(options.colormap, 1.0 - (y + 0.5) / l.image_h);
+    for (int x = 0; x < kBarWidth; ++x) put(l.bar_x + x, out.image_y + y, c);
   }
-  cairo_surface_mark_dirty(surface.get());
+  cairo_surface_mark_dirty(surface);
+}
 
-  // Bar frame, ticks and labels. Lines sit on half-pixel coordinates so a
-  // 1 px stroke covers exactly one pixel column/row.
-  cairo_set_source_rgb(cr.get(), 0, 0, 0);
-  cairo_set_line_width(cr.get(), 1.0);
-  cairo_rectangle(cr.get(), bar_x - 0.5, out.image_y - 0.5, kBarWidth + 1, image_h + 1);
-  cairo_stroke(cr.get());
-  set_font(cr.get(), kTickFontSize);
+// Bar frame, ticks and labels, the title, and the units beside the bar.
+// Lines sit on half-pixel coordinates so a 1 px stroke covers exactly one
+// pixel column/row.
+void draw_texts(cairo_t* cr, const PreviewOptions& options,
+                const std::vector<std::pair<double, std::string>>& ticks, const PreviewLayout& l,
+                const PreviewRaster& out) {
+  cairo_set_source_rgb(cr, 0, 0, 0);
+  cairo_set_line_width(cr, 1.0);
+  cairo_rectangle(cr, l.bar_x - 0.5, out.image_y - 0.5, kBarWidth + 1, l.image_h + 1);
+  cairo_stroke(cr);
+  set_font(cr, kTickFontSize);
   for (const auto& [fraction, label] : ticks) {
-    const double y = out.image_y + image_h * (1.0 - fraction);
+    const double y = out.image_y + l.image_h * (1.0 - fraction);
     const double line_y = std::floor(y) + 0.5;
-    cairo_move_to(cr.get(), bar_x + kBarWidth + 0.5, line_y);
-    cairo_line_to(cr.get(), bar_x + kBarWidth + 0.5 + kTickLength, line_y);
-    cairo_stroke(cr.get());
-    cairo_move_to(cr.get(), label_x, y + (tick_font.ascent - tick_font.descent) / 2);
-    cairo_show_text(cr.get(), label.c_str());
+    cairo_move_to(cr, l.bar_x + kBarWidth + 0.5, line_y);
+    cairo_line_to(cr, l.bar_x + kBarWidth + 0.5 + kTickLength, line_y);
+    cairo_stroke(cr);
+    cairo_move_to(cr, l.label_x, y + (l.tick_font.ascent - l.tick_font.descent) / 2);
+    cairo_show_text(cr, label.c_str());
   }
   if (!options.title.empty()) {
-    set_font(cr.get(), kTitleFontSize);
-    cairo_move_to(cr.get(), kMargin, kMargin + title_font.ascent);
-    cairo_show_text(cr.get(), options.title.c_str());
+    set_font(cr, kTitleFontSize);
+    cairo_move_to(cr, kMargin, kMargin + l.title_font.ascent);
+    cairo_show_text(cr, options.title.c_str());
   }
   if (!options.units.empty()) {
     // Rotated to read bottom to top beside the bar; after rotate(-pi/2) the
     // glyphs' ascent points left, so the baseline sits `ascent` right of units_x.
-    set_font(cr.get(), kUnitsFontSize);
-    cairo_save(cr.get());
-    cairo_translate(cr.get(), units_x + units_font.ascent, out.image_y + (image_h + units_len) / 2);
-    cairo_rotate(cr.get(), -std::numbers::pi / 2);
-    cairo_move_to(cr.get(), 0, 0);
-    cairo_show_text(cr.get(), options.units.c_str());
-    cairo_restore(cr.get());
+    set_font(cr, kUnitsFontSize);
+    cairo_save(cr);
+    cairo_translate(cr, l.units_x + l.units_font.ascent,
+                    out.image_y + (l.image_h + l.units_len) / 2);
+    cairo_rotate(cr, -std::numbers::pi / 2);
+    cairo_move_to(cr, 0, 0);
+    cairo_show_text(cr, options.units.c_str());
+    cairo_restore(cr);
   }
+}
+
+PreviewRaster render(const std::string& file, int width, int height,
+                     const std::vector<float>& values, const PreviewOptions& options) {
+  validate_image(file, width, height, values);
+  PreviewRaster out;
+  std::tie(out.min, out.max) = value_range(file, values, options);
+  out.scale =
+      std::max(1, std::min((kTargetImageHeight + height - 1) / height, kMaxImageWidth / width));
+  const auto ticks = bar_ticks(out.min, out.max);
+  const PreviewLayout layout = lay_out(options, ticks, width * out.scale, height * out.scale, out);
+
+  SurfacePtr surface = cairo_canvas::create_surface(out.width, out.height, /*white=*/true);
+  CairoPtr cr(cairo_create(surface.get()));
+  paint_image_and_bar(surface.get(), width, values, options, layout, out);
+  draw_texts(cr.get(), options, ticks, layout, out);
   if (cairo_status(cr.get()) != CAIRO_STATUS_SUCCESS) {
     throw Error(fmt::format("cairo: drawing the preview failed: {}",
                             cairo_status_to_string(cairo_status(cr.get()))));
