@@ -14,7 +14,7 @@ TEST(RegionStats, MeansOverRectanglesAndTheWholeImage) {
   img.height = 2;
   const Band lwir = Band::preset("lwir");
   const BandQuadrature q(lwir, 8, 0.0);
-  BandImage b{lwir, std::vector<float>(8), std::vector<float>(8), std::vector<float>(8)};
+  BandImage b{lwir, std::vector<float>(8), std::vector<float>(8), std::vector<float>(8), {}};
   for (int i = 0; i < 8; ++i) {
     b.radiance[i] = static_cast<float>(q.blackbody_radiance(i < 4 ? 300.0 : 280.0));
     b.transmittance[i] = 0.1f * i;

@@ -77,7 +77,9 @@ class CliTest : public testing::TempDirTest {
     EXPECT_NE(r.err.find("error"), std::string::npos) << r.err;
     EXPECT_NE(r.err.find(file), std::string::npos) << r.err;
     EXPECT_NE(r.err.find(field), std::string::npos) << r.err;
-    if (fs::exists(out_dir)) EXPECT_TRUE(fs::is_empty(out_dir)) << "partial output left behind";
+    if (fs::exists(out_dir)) {
+      EXPECT_TRUE(fs::is_empty(out_dir)) << "partial output left behind";
+    }
   }
 };
 

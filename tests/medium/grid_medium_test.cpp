@@ -166,7 +166,9 @@ TEST(GridMedium, GaussianPuffOpticalDepthConvergesToClosedForm) {
       // Transmittance e^{−τ} inherits the same relative accuracy in τ.
     }
     RecordProperty("relative_error_" + std::to_string(res), std::to_string(worst));
-    if (res == 128) EXPECT_LE(worst, 1e-3);
+    if (res == 128) {
+      EXPECT_LE(worst, 1e-3);
+    }
     EXPECT_LT(worst, 0.5 * previous_error) << "no convergence at " << res;
     previous_error = worst;
   }

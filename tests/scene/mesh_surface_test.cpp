@@ -284,7 +284,9 @@ TEST(MeshSurface, FarOriginHitsAtTheExactDistance) {
     EXPECT_NEAR(hit.normal.z, 1.0, 1e-12);
     // A window ending just before it misses; one starting just after finds what lies behind.
     EXPECT_FALSE(s.intersect(ray, 0.0, 1999.999, hit));
-    if (s.intersect(ray, 2000.000001, kInf, hit)) EXPECT_GT(hit.t, 2000.0);
+    if (s.intersect(ray, 2000.000001, kInf, hit)) {
+      EXPECT_GT(hit.t, 2000.0);
+    }
   }
 }
 
