@@ -14,8 +14,8 @@
 #include <fstream>
 #include <string>
 
-#include "obscura/report/line_plot.h"
 #include "obscura/render/renderer.h"
+#include "obscura/report/line_plot.h"
 #include "obscura/scene/example_scenes.h"
 
 using namespace obscura;

@@ -22,8 +22,8 @@
 
 #include "bench_timer.h"
 #include "obscura/prep/prepare.h"
-#include "obscura/sequence/sequence_runner.h"
 #include "obscura/scene/scene.h"
+#include "obscura/sequence/sequence_runner.h"
 
 using namespace obscura;
 using bench::Clock;
@@ -108,7 +108,8 @@ int main(int argc, char** argv) {
     std::printf(
         "scene %s: %d frames at t = %g…%g s, %d×%d px, method %s, %lld photons per node, %d "
         "threads\n",
-        scene_path.c_str(), frames, t0, t1, width, height, std::string(render_method_name(scene.settings.method)).c_str(),
+        scene_path.c_str(), frames, t0, t1, width, height,
+        std::string(render_method_name(scene.settings.method)).c_str(),
         scene.settings.photon_map.photons_per_node, threads);
     std::printf(
         "preparation (once): %.2f s (concentrations %.2f, optics %.2f, keyframes %.2f), %zu "

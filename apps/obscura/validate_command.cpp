@@ -14,26 +14,24 @@
 
 namespace obscura::cli {
 
-Command add_validate_command(CLI::App& app) {
-  auto* cmd = app.add_subcommand(
-      "validate",
-      "Run canonical radiative-transfer cases (slab, furnace, equilibrium, emitting-slab, "
-      "single-scatter, puff-transmittance, or all) against their known answers");
-  struct Options {
-    std::string name;
-    std::optional<double> tau, g, albedo;
-    double temperature = 300.0;
-    std::string incidence = "normal";
-    double mu0 = 1.0;
-    std::optional<double> half_width;
-    std::string method = "path-tracer";
-    RenderSettings settings;
-    std::string form = "hybrid";
-    std::string reference;
-    std::optional<int> samples;
-    bool json = false;
-  };
-  auto o = std::make_shared<Options>();
+namespace {
+
+struct ValidateOptions {
+  std::string name;
+  std::optional<double> tau, g, albedo;
+  double temperature = 300.0;
+  std::string incidence = "normal";
+  double mu0 = 1.0;
+  std::optional<double> half_width;
+  std::string method = "path-tracer";
+  RenderSettings settings;
+  std::string form = "hybrid";
+  std::string reference;
+  std::optional<int> samples;
+  bool json = false;
+};
+
+void add_options(CLI::App* cmd, ValidateOptions* o) {
   cmd->add_option("case", o->name,
                   "slab | furnace | equilibrium | emitting-slab | single-scatter | "
                   "puff-transmittance | all")
@@ -86,111 +84,135 @@ Command add_validate_command(CLI::App& app) {
                   "Threads (0: all cores); results do not depend on it")
       ->capture_default_str();
   cmd->add_flag("--json", o->json, "Print a JSON array of rows instead of a table");
-  return {
-      cmd, [o]() {
-        const double g = o->g.value_or(0.5);
-        ValidationOptions options;
-        options.samples = o->samples.value_or(0);
-        options.settings = o->settings;
-        options.settings.method = *parse_render_method(o->method);  // CLI::IsMember checked it
-        options.settings.photon_map.pure = o->form == "pure";
-        const bool photonmap = options.settings.method == RenderMethod::kPhotonMap;
-        std::vector<ValidationRow> rows;
-        auto add = [&](std::vector<ValidationRow> r) {
-          rows.insert(rows.end(), r.begin(), r.end());
-        };
-        const bool all = o->name == "all";
-        std::optional<SlabReference> slab_reference;
-        if (all || o->name == "slab") {
-          SlabSpec slab;
-          slab.albedo = o->albedo.value_or(0.9);
-          slab.tau = o->tau.value_or(1.0);
-          slab.g = g;
-          slab.incidence =
-              o->incidence == "diffuse" ? SlabIncidence::kDiffuse : SlabIncidence::kCollimated;
-          if (o->incidence == "normal" && o->mu0 != 1.0)
-            throw InputError("", "--mu0",
-                             "give --incidence collimated with --mu0 (normal means mu0 = 1)");
-          slab.mu0 = o->mu0;
-          slab.half_width_m = o->half_width.value_or(photonmap ? 20.0 : 1e6);
-          const std::string table =
-              o->reference.empty()
-                  ? (data_directory() / "validation" / "slab_reference.csv").string()
-                  : o->reference;
-          slab_reference = find_slab_reference(table, slab);
-          add(validate_slab(slab, slab_reference, options));
-        }
-        if (all || o->name == "furnace") add(validate_furnace(o->tau.value_or(1.0), g, options));
-        if (all || o->name == "equilibrium")
-          add(validate_equilibrium(o->albedo.value_or(0.8), o->tau.value_or(1.0), g, o->temperature,
-                                   options));
-        if (all || o->name == "emitting-slab")
-          add(validate_emitting_slab(o->tau.value_or(1.0), o->temperature, options));
-        if (all || o->name == "single-scatter")
-          add(validate_single_scatter(o->tau.value_or(0.002), g, options));
-        if (all || o->name == "puff-transmittance") add(validate_puff_transmittance(options));
-        bool ok = true;
-        nlohmann::json out = nlohmann::json::array();
-        auto number_or_null = [](bool judged, double v) {
-          return judged ? nlohmann::json(v) : nlohmann::json();
-        };
-        for (const auto& r : rows) {
-          ok = ok && (!r.judged || r.pass);
-          out.push_back({{"case", r.case_name},
-                         {"quantity", r.quantity},
-                         {"reference", number_or_null(r.judged, r.reference)},
-                         {"obtained", r.obtained},
-                         {"relative_error", number_or_null(r.judged, r.relative_error())},
-                         {"stderr", r.stderr_mean},
-                         {"tolerance", r.tolerance},
-                         {"samples", r.samples},
-                         {"pass", r.judged ? nlohmann::json(r.pass) : nlohmann::json()}});
-        }
-        if (o->json && o->name == "slab") {
-          // The slab's own keys (R, T, T_direct with standard errors) and its rows.
-          nlohmann::json slab = {{"case", rows[0].case_name}};
-          for (const auto& r : rows) {
-            slab[r.quantity] = r.obtained;
-            slab[r.quantity + "_stderr"] = r.stderr_mean;
-          }
-          slab["reference"] = slab_reference
-                                  ? nlohmann::json{{"R", slab_reference->r},
-                                                   {"T", slab_reference->t},
-                                                   {"T_direct", slab_reference->t_direct},
-                                                   {"source", slab_reference->source}}
-                                  : nlohmann::json();
-          slab["rows"] = out;
-          slab["pass"] = ok;
-          std::cout << slab.dump(2) << "\n";
-        } else if (o->json) {
-          std::cout << out.dump(2) << "\n";
-        } else {
-          std::cout << fmt::format("{:<44} {:<18} {:>12} {:>12} {:>10} {:>10} {:>9}  {}\n", "case",
-                                   "quantity", "reference", "obtained", "rel.error", "stderr",
-                                   "samples", "result");
-          for (const auto& r : rows) {
-            if (r.judged)
-              std::cout << fmt::format(
-                  "{:<44} {:<18} {:>12.6g} {:>12.6g} {:>10.2e} {:>10.2e} {:>9}  {}\n", r.case_name,
-                  r.quantity, r.reference, r.obtained, r.relative_error(), r.stderr_mean, r.samples,
-                  r.pass ? "pass" : "FAIL");
+}
+
+// The cases the command line asks for, run with the chosen solver;
+// `slab_reference` gets the slab's table row when the slab is among them.
+std::vector<ValidationRow> run_cases(const ValidateOptions& o,
+                                     std::optional<SlabReference>& slab_reference) {
+  const double g = o.g.value_or(0.5);
+  ValidationOptions options;
+  options.samples = o.samples.value_or(0);
+  options.settings = o.settings;
+  options.settings.method = *parse_render_method(o.method);  // CLI::IsMember checked it
+  options.settings.photon_map.pure = o.form == "pure";
+  const bool photonmap = options.settings.method == RenderMethod::kPhotonMap;
+  std::vector<ValidationRow> rows;
+  auto add = [&](std::vector<ValidationRow> r) { rows.insert(rows.end(), r.begin(), r.end()); };
+  const bool all = o.name == "all";
+  if (all || o.name == "slab") {
+    SlabSpec slab;
+    slab.albedo = o.albedo.value_or(0.9);
+    slab.tau = o.tau.value_or(1.0);
+    slab.g = g;
+    slab.incidence =
+        o.incidence == "diffuse" ? SlabIncidence::kDiffuse : SlabIncidence::kCollimated;
+    if (o.incidence == "normal" && o.mu0 != 1.0)
+      throw InputError("", "--mu0",
+                       "give --incidence collimated with --mu0 (normal means mu0 = 1)");
+    slab.mu0 = o.mu0;
+    slab.half_width_m = o.half_width.value_or(photonmap ? 20.0 : 1e6);
+    const std::string table =
+        o.reference.empty() ? (data_directory() / "validation" / "slab_reference.csv").string()
+                            : o.reference;
+    slab_reference = find_slab_reference(table, slab);
+    add(validate_slab(slab, slab_reference, options));
+  }
+  if (all || o.name == "furnace") add(validate_furnace(o.tau.value_or(1.0), g, options));
+  if (all || o.name == "equilibrium")
+    add(validate_equilibrium(o.albedo.value_or(0.8), o.tau.value_or(1.0), g, o.temperature,
+                             options));
+  if (all || o.name == "emitting-slab")
+    add(validate_emitting_slab(o.tau.value_or(1.0), o.temperature, options));
+  if (all || o.name == "single-scatter")
+    add(validate_single_scatter(o.tau.value_or(0.002), g, options));
+  if (all || o.name == "puff-transmittance") add(validate_puff_transmittance(options));
+  return rows;
+}
+
+nlohmann::json rows_json(const std::vector<ValidationRow>& rows) {
+  nlohmann::json out = nlohmann::json::array();
+  auto number_or_null = [](bool judged, double v) {
+    return judged ? nlohmann::json(v) : nlohmann::json();
+  };
+  for (const auto& r : rows)
+    out.push_back({{"case", r.case_name},
+                   {"quantity", r.quantity},
+                   {"reference", number_or_null(r.judged, r.reference)},
+                   {"obtained", r.obtained},
+                   {"relative_error", number_or_null(r.judged, r.relative_error())},
+                   {"stderr", r.stderr_mean},
+                   {"tolerance", r.tolerance},
+                   {"samples", r.samples},
+                   {"pass", r.judged ? nlohmann::json(r.pass) : nlohmann::json()}});
+  return out;
+}
+
+// The slab's own keys (R, T, T_direct with standard errors), its reference and its rows.
+nlohmann::json slab_json(const std::vector<ValidationRow>& rows,
+                         const std::optional<SlabReference>& reference, bool ok) {
+  nlohmann::json slab = {{"case", rows[0].case_name}};
+  for (const auto& r : rows) {
+    slab[r.quantity] = r.obtained;
+    slab[r.quantity + "_stderr"] = r.stderr_mean;
+  }
+  slab["reference"] = reference ? nlohmann::json{{"R", reference->r},
+                                                 {"T", reference->t},
+                                                 {"T_direct", reference->t_direct},
+                                                 {"source", reference->source}}
+                                : nlohmann::json();
+  slab["rows"] = rows_json(rows);
+  slab["pass"] = ok;
+  return slab;
+}
+
+std::string rows_table(const std::vector<ValidationRow>& rows,
+                       const std::optional<SlabReference>& slab_reference) {
+  std::string text =
+      fmt::format("{:<44} {:<18} {:>12} {:>12} {:>10} {:>10} {:>9}  {}\n", "case", "quantity",
+                  "reference", "obtained", "rel.error", "stderr", "samples", "result");
+  for (const auto& r : rows) {
+    if (r.judged)
+      text += fmt::format("{:<44} {:<18} {:>12.6g} {:>12.6g} {:>10.2e} {:>10.2e} {:>9}  {}\n",
+                          r.case_name, r.quantity, r.reference, r.obtained, r.relative_error(),
+                          r.stderr_mean, r.samples, r.pass ? "pass" : "FAIL");
+    else
+      text +=
+          fmt::format("{:<44} {:<18} {:>12} {:>12.6g} {:>10} {:>10.2e} {:>9}  {}\n", r.case_name,
+                      r.quantity, "-", r.obtained, "-", r.stderr_mean, r.samples, "no reference");
+  }
+  if (slab_reference && !slab_reference->source.empty())
+    text += "slab reference: " + slab_reference->source + "\n";
+  const auto judged = std::count_if(rows.begin(), rows.end(), [](auto& r) { return r.judged; });
+  text += fmt::format(
+      "{} of {} passed (pass: |difference| <= max(3 stderr, tolerance) and stderr <= "
+      "tolerance)\n",
+      std::count_if(rows.begin(), rows.end(), [](auto& r) { return r.judged && r.pass; }), judged);
+  return text;
+}
+
+}  // namespace
+
+Command add_validate_command(CLI::App& app) {
+  auto* cmd = app.add_subcommand(
+      "validate",
+      "Run canonical radiative-transfer cases (slab, furnace, equilibrium, emitting-slab, "
+      "single-scatter, puff-transmittance, or all) against their known answers");
+  auto o = std::make_shared<ValidateOptions>();
+  add_options(cmd, o.get());
+  return {cmd, [o]() {
+            std::optional<SlabReference> slab_reference;
+            const std::vector<ValidationRow> rows = run_cases(*o, slab_reference);
+            const bool ok = std::all_of(rows.begin(), rows.end(),
+                                        [](const ValidationRow& r) { return !r.judged || r.pass; });
+            if (o->json && o->name == "slab")
+              std::cout << slab_json(rows, slab_reference, ok).dump(2) << "\n";
+            else if (o->json)
+              std::cout << rows_json(rows).dump(2) << "\n";
             else
-              std::cout << fmt::format(
-                  "{:<44} {:<18} {:>12} {:>12.6g} {:>10} {:>10.2e} {:>9}  {}\n", r.case_name,
-                  r.quantity, "-", r.obtained, "-", r.stderr_mean, r.samples, "no reference");
-          }
-          if (slab_reference && !slab_reference->source.empty())
-            std::cout << "slab reference: " << slab_reference->source << "\n";
-          const auto judged =
-              std::count_if(rows.begin(), rows.end(), [](auto& r) { return r.judged; });
-          std::cout << fmt::format(
-              "{} of {} passed (pass: |difference| <= max(3 stderr, tolerance) "
-              "and stderr <= tolerance)\n",
-              std::count_if(rows.begin(), rows.end(), [](auto& r) { return r.judged && r.pass; }),
-              judged);
-        }
-        return ok ? 0 : 1;
-      }};
+              std::cout << rows_table(rows, slab_reference);
+            return ok ? 0 : 1;
+          }};
 }
 
 }  // namespace obscura::cli

@@ -15,4 +15,8 @@ struct MetricsSettings {
   int background_margin_px = 8;
 };
 
+class JsonObject;
+// The scene file's "metrics" object over the defaults; errors name the JSON path.
+MetricsSettings parse_metrics_settings(JsonObject& metrics);
+
 }  // namespace obscura

@@ -111,17 +111,26 @@ Sky Sky::zenith_table(std::vector<double> zenith_deg, std::vector<double> wavele
   if (!(s.interval_cdf_.back() > 0.0)) return Sky();  // all zero: a black sky
   for (double& c : s.interval_cdf_) c /= s.interval_cdf_.back();
 
-  // Reflected radiance (1/π)∫ L(μ) K(μ; n_z) dμ, with K the clamped-cosine
-  // azimuthal integral: Gauss–Legendre on pieces split at the table's zenith
-  // angles and at the kernel's kinks μ = ±sin θ_n, so every piece is smooth.
+  s.reflected_ = s.reflected_table(wavelengths_um);
+  return s;
+}
+
+// Reflected radiance (1/π)∫ L(μ) K(μ; n_z) dμ at kNormalZ normals, with K the
+// clamped-cosine azimuthal integral: Gauss–Legendre on pieces split at the
+// table's zenith angles and at the kernel's kinks μ = ±sin θ_n, so every
+// piece is smooth.
+std::vector<TabulatedSpectrum> Sky::reflected_table(
+    const std::vector<double>& wavelengths_um) const {
+  const std::size_t nw = wavelengths_um.size();
   std::vector<double> gl_x, gl_w;
   gauss_legendre(16, gl_x, gl_w);
-  std::vector<double> reflected(static_cast<std::size_t>(kNormalZ) * nw, 0.0);
+  std::vector<TabulatedSpectrum> rows;
   for (int k = 0; k < kNormalZ; ++k) {
+    std::vector<double> reflected(nw, 0.0);
     const double n_z = -1.0 + 2.0 * k / (kNormalZ - 1);
     const double sin_n = std::sqrt(std::max(0.0, 1.0 - n_z * n_z));
     std::vector<double> breaks{-1.0, 1.0, sin_n, -sin_n};
-    for (double z : s.zenith_deg_) breaks.push_back(std::cos(z * kDegToRad));
+    for (double z : zenith_deg_) breaks.push_back(std::cos(z * kDegToRad));
     std::sort(breaks.begin(), breaks.end());
     for (std::size_t b = 0; b + 1 < breaks.size(); ++b) {
       const double lo = breaks[b], hi = breaks[b + 1];
@@ -133,15 +142,12 @@ Sky Sky::zenith_table(std::vector<double> zenith_deg, std::vector<double> wavele
         const double weight = 0.5 * (hi - lo) * gl_w[q] * kernel / std::numbers::pi;
         if (weight == 0.0) continue;
         for (std::size_t j = 0; j < nw; ++j)
-          reflected[k * nw + j] += weight * s.table_radiance(mu, wavelengths_um[j]);
+          reflected[j] += weight * table_radiance(mu, wavelengths_um[j]);
       }
     }
+    rows.emplace_back(wavelengths_um, std::move(reflected));
   }
-  for (int k = 0; k < kNormalZ; ++k)
-    s.reflected_.emplace_back(
-        wavelengths_um,
-        std::vector<double>(reflected.begin() + k * nw, reflected.begin() + (k + 1) * nw));
-  return s;
+  return rows;
 }
 
 double Sky::table_radiance(double cos_zenith, double wavelength_um) const {

@@ -55,6 +55,7 @@ class Sky {
  private:
   enum class Kind { kBlack, kBlackbody, kTable };
   double table_radiance(double cos_zenith, double wavelength_um) const;
+  std::vector<TabulatedSpectrum> reflected_table(const std::vector<double>& wavelengths_um) const;
   // Cosine of the largest zenith angle with sky radiance (−1 or 0).
   double lowest_cos_zenith() const;
 

@@ -371,6 +371,45 @@ std::optional<SlabReference> find_slab_reference(const std::string& csv_path,
   return published;
 }
 
+namespace {
+
+// The scene of a slab case: a slab 1 m thick, σt = τ /m, laterally
+// ±half_width (docs/validation.md: "Laterally infinite slabs"), non-emitting
+// (0 K), at one wavelength, under its illumination.
+//
+// Fluxes by reciprocity: the radiance L leaving a face, averaged over
+// cosine-distributed directions, is F/π. Collimated: the sun (a 0.01° disc)
+// at zenith angle acos μ0 gives irradiance E0 μ0 on the top face, so
+// R = π L↑/(E0 μ0). Diffuse: the sky is L0 above the horizon and black
+// below, the incident flux π L0, so R = L↑/L0. `norm` is that factor.
+struct SlabScene {
+  static constexpr double kThickness = 1.0, kWavelength = 0.55;
+  Scene scene;
+  double norm = 0.0;
+  Vec3 beam{0, 0, -1};  // direction of travel of the unscattered beam
+
+  explicit SlabScene(const SlabSpec& slab) {
+    const double w = slab.half_width_m;
+    scene.medium = std::make_shared<HomogeneousMedium>(
+        BBox3({-w, -w, 0}, {w, w, kThickness}), std::vector<double>{kWavelength},
+        std::vector<double>{slab.tau * (1 - slab.albedo)},
+        std::vector<double>{slab.tau * slab.albedo}, std::vector<double>{slab.g}, 0.0);
+    if (slab.incidence == SlabIncidence::kCollimated) {
+      scene.sun.enabled = true;
+      scene.sun.azimuth_deg = 0.0;
+      scene.sun.elevation_deg = std::asin(slab.mu0) * 180.0 / std::numbers::pi;
+      scene.sun.angular_diameter_deg = 0.01;
+      beam = -scene.sun.direction();
+      norm = std::numbers::pi / (scene.sun.irradiance(kWavelength) * slab.mu0);
+    } else {
+      scene.sky = Sky::blackbody(5778.0, false);
+      norm = 1.0 / planck_radiance(kWavelength, 5778.0);
+    }
+  }
+};
+
+}  // namespace
+
 std::vector<ValidationRow> validate_slab(const SlabSpec& slab,
                                          const std::optional<SlabReference>& ref,
                                          const ValidationOptions& o) {
@@ -384,34 +423,11 @@ std::vector<ValidationRow> validate_slab(const SlabSpec& slab,
   if (slab.incidence == SlabIncidence::kDiffuse && slab.mu0 != 1.0)
     throw InputError("", "--mu0", "applies to collimated incidence only");
 
-  // A slab 1 m thick, σt = τ /m, laterally ±half_width (docs/validation.md:
-  // "Laterally infinite slabs"), non-emitting (0 K), at one wavelength.
-  constexpr double kThickness = 1.0, kWavelength = 0.55;
-  const double w = slab.half_width_m;
-  Scene scene;
-  scene.medium = std::make_shared<HomogeneousMedium>(
-      BBox3({-w, -w, 0}, {w, w, kThickness}), std::vector<double>{kWavelength},
-      std::vector<double>{slab.tau * (1 - slab.albedo)},
-      std::vector<double>{slab.tau * slab.albedo}, std::vector<double>{slab.g}, 0.0);
-
-  // Fluxes by reciprocity: the radiance L leaving a face, averaged over
-  // cosine-distributed directions, is F/π. Collimated: the sun (a 0.01° disc)
-  // at zenith angle acos μ0 gives irradiance E0 μ0 on the top face, so
-  // R = π L↑/(E0 μ0). Diffuse: the sky is L0 above the horizon and black
-  // below, the incident flux π L0, so R = L↑/L0.
-  double norm = 0.0;
-  Vec3 beam(0, 0, -1);  // direction of travel of the unscattered beam
-  if (slab.incidence == SlabIncidence::kCollimated) {
-    scene.sun.enabled = true;
-    scene.sun.azimuth_deg = 0.0;
-    scene.sun.elevation_deg = std::asin(slab.mu0) * 180.0 / std::numbers::pi;
-    scene.sun.angular_diameter_deg = 0.01;
-    beam = -scene.sun.direction();
-    norm = std::numbers::pi / (scene.sun.irradiance(kWavelength) * slab.mu0);
-  } else {
-    scene.sky = Sky::blackbody(5778.0, false);
-    norm = 1.0 / planck_radiance(kWavelength, 5778.0);
-  }
+  constexpr double kThickness = SlabScene::kThickness, kWavelength = SlabScene::kWavelength;
+  SlabScene slab_scene(slab);
+  Scene& scene = slab_scene.scene;
+  const double norm = slab_scene.norm;
+  const Vec3 beam = slab_scene.beam;
   const bool diffuse = slab.incidence == SlabIncidence::kDiffuse;
   // The unscattered beam is scored by ratio tracking (T_direct); camera rays
   // must not see the sun's disc as well.

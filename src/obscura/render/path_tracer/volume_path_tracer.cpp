@@ -36,6 +36,100 @@ double sky_next_event(const Scene& scene, const Vec3& position, const SpectralNo
          transmittance_to_infinity(scene, position, d, lambda, rng, scratch);
 }
 
+// Where a path is: the ray it follows, the radiance scored so far, its
+// throughput β, and the density of the direction it follows (for MIS).
+struct PathState {
+  Ray ray;
+  double radiance = 0.0, beta = 1.0;
+  double last_scatter_pdf = 0.0;
+};
+
+// What every vertex of one path shares.
+struct PathContext {
+  const Scene& scene;
+  const SpectralNode& node;
+  SpectralLerp lambda;
+  bool sky_lit;  // the sky is sampled directly at vertices
+};
+
+// A real collision at distance t; `point` holds the coefficients there
+// (sample_free_flight's last evaluation). Scores the emission, the sun and
+// the sky by next-event estimation, and scatters. False: the path ends.
+bool collide(const PathContext& c, double t, MediumPoint& point, Rng& rng, PathState& s) {
+  const double sigma_a = c.lambda(point.sigma_a.data());
+  const double sigma_s = c.lambda(point.sigma_s.data());
+  const double sigma_t = sigma_a + sigma_s;
+  s.radiance += s.beta * (sigma_a / sigma_t) * c.node.planck(point.temperature_k);
+  s.beta *= sigma_s / sigma_t;
+  if (s.beta == 0.0) return false;
+  const HenyeyGreenstein phase(std::clamp(c.lambda(point.g.data()), -0.999999, 0.999999));
+  const Vec3 position = s.ray.at(t);
+  const Vec3 incoming = s.ray.direction;
+  if (c.scene.sun.enabled) {
+    // Next-event estimation towards the sun: β Λ p(ω_i, ω_sun) E_λ T.
+    const Vec3 to_sun = sample_sun_direction(c.scene.sun, rng);
+    const double p = phase.eval(incoming, to_sun);
+    if (p > 0.0)
+      s.radiance += s.beta * p * c.scene.sun.irradiance(c.node.wavelength_um) *
+                    transmittance_to_infinity(c.scene, position, to_sun, c.lambda, rng, point);
+  }
+  if (c.sky_lit)
+    s.radiance += s.beta * sky_next_event(c.scene, position, c.node, c.lambda, rng, point,
+                                          [&](const Vec3& d) { return phase.eval(incoming, d); });
+  double pdf = 0.0;
+  s.ray = Ray{position, phase.sample(incoming, rng.uniform(), rng.uniform(), &pdf)};
+  s.last_scatter_pdf = pdf;
+  return true;
+}
+
+// The path meets a surface: its emission ε B(T), the sun and the sky it
+// reflects by next-event estimation, and a cosine-distributed bounce with
+// weight ρ = 1 − ε. False: the path ends.
+bool reflect(const PathContext& c, const SurfaceHit& hit, MediumPoint& scratch, Rng& rng,
+             PathState& s) {
+  const SurfaceMaterial& m = c.scene.surfaces[hit.surface]->material();
+  const double emissivity = m.emissivity_at(c.node.wavelength_um);
+  s.radiance += s.beta * emissivity * c.node.planck(m.temperature_k);
+  s.beta *= 1.0 - emissivity;
+  if (s.beta == 0.0) return false;
+  const Vec3 position = s.ray.at(hit.t) + hit.normal * 1e-9;
+  if (c.scene.sun.enabled) {
+    // Lambertian reflection of the sun: β (ρ/π) cos θ_sun E_λ T, with ρ = 1 − ε.
+    const Vec3 to_sun = sample_sun_direction(c.scene.sun, rng);
+    const double cos_sun = dot(hit.normal, to_sun);
+    if (cos_sun > 0.0)
+      s.radiance += s.beta / std::numbers::pi * cos_sun *
+                    c.scene.sun.irradiance(c.node.wavelength_um) *
+                    transmittance_to_infinity(c.scene, position, to_sun, c.lambda, rng, scratch);
+  }
+  if (c.sky_lit)
+    s.radiance +=
+        s.beta *
+        sky_next_event(c.scene, position, c.node, c.lambda, rng, scratch, [&](const Vec3& d) {
+          return std::max(0.0, dot(hit.normal, d)) * std::numbers::inv_pi;
+        });
+  s.ray = Ray{position,
+              local_to_world(hit.normal, sample_cosine_hemisphere(rng.uniform(), rng.uniform()))};
+  s.last_scatter_pdf = std::max(0.0, dot(hit.normal, s.ray.direction)) * std::numbers::inv_pi;
+  return true;
+}
+
+// The path leaves the scene after `depth` bounces: the sky it finds (after a
+// bounce combined by the power heuristic with the sky's own next-event
+// estimate) and, for a camera ray only, the sun's disc.
+void escape(const PathContext& c, int depth, PathState& s) {
+  const Scene& scene = c.scene;
+  const double sky = scene.sky.radiance(s.ray.direction, c.node.wavelength_um);
+  s.radiance += s.beta * sky *
+                (depth == 0 || !c.sky_lit
+                     ? 1.0
+                     : power_heuristic(s.last_scatter_pdf, scene.sky.pdf(s.ray.direction)));
+  // After a bounce, next-event estimation already counts the sun.
+  if (depth == 0 && scene.settings.camera_sees_sun && scene.sun.enabled &&
+      dot(s.ray.direction, scene.sun.direction()) >= scene.sun.cos_half_angle())
+    s.radiance += s.beta * scene.sun.radiance(c.node.wavelength_um);
+}
+
 }  // namespace
 
 double trace_path(const Scene& scene, const Ray& ray, const SpectralNode& node, Rng& rng) {
@@ -49,98 +143,41 @@ double trace_path(const Scene& scene, const Ray& ray, const SpectralNode& node, 
 double trace_path(const Scene& scene, const CameraRay& camera, const SpectralNode& node, Rng& rng) {
   const PathTracerSettings& settings = scene.settings.path_tracer;
   const Medium* medium = scene.medium.get();
-  const SpectralLerp lambda = node.lerp();
-  MediumPoint point;
-  Ray ray = camera.ray;
-  double radiance = 0.0, beta = 1.0;
   using SkySampling = PathTracerSettings::SkySampling;
-  const bool sky_lit = !scene.sky.is_black() &&
-                       (settings.sky_next_event == SkySampling::kAlways ||
-                        (settings.sky_next_event == SkySampling::kAuto && scene.sky.is_table()));
-  double last_scatter_pdf = 0.0;  // density of the direction the path now follows
+  const PathContext c{scene, node, node.lerp(),
+                      !scene.sky.is_black() && (settings.sky_next_event == SkySampling::kAlways ||
+                                                (settings.sky_next_event == SkySampling::kAuto &&
+                                                 scene.sky.is_table()))};
+  MediumPoint point;
+  PathState s;
+  s.ray = camera.ray;
   for (int depth = 0; depth < settings.max_depth; ++depth) {
     // The camera ray's surface is known; every later segment looks for its own.
     SurfaceHit hit = camera.hit;
     const bool on_surface = depth == 0
                                 ? camera.on_surface
-                                : intersect_surfaces(scene.surfaces, ray, 1e-9,
+                                : intersect_surfaces(scene.surfaces, s.ray, 1e-9,
                                                      std::numeric_limits<double>::infinity(), hit);
     const double t_surface = on_surface ? hit.t : std::numeric_limits<double>::infinity();
     const auto collision =
-        medium ? sample_free_flight(*medium, ray, t_surface, lambda, rng, point) : std::nullopt;
+        medium ? sample_free_flight(*medium, s.ray, t_surface, c.lambda, rng, point) : std::nullopt;
     if (collision) {
-      // `point` holds the coefficients at the accepted collision (sample_free_flight's last
-      // evaluation).
-      const double sigma_a = lambda(point.sigma_a.data());
-      const double sigma_s = lambda(point.sigma_s.data());
-      const double sigma_t = sigma_a + sigma_s;
-      radiance += beta * (sigma_a / sigma_t) * node.planck(point.temperature_k);
-      beta *= sigma_s / sigma_t;
-      if (beta == 0.0) break;
-      const HenyeyGreenstein phase(std::clamp(lambda(point.g.data()), -0.999999, 0.999999));
-      const Vec3 position = ray.at(*collision);
-      if (scene.sun.enabled) {
-        // Next-event estimation towards the sun: β Λ p(ω_i, ω_sun) E_λ T.
-        const Vec3 to_sun = sample_sun_direction(scene.sun, rng);
-        const double p = phase.eval(ray.direction, to_sun);
-        if (p > 0.0)
-          radiance += beta * p * scene.sun.irradiance(node.wavelength_um) *
-                      transmittance_to_infinity(scene, position, to_sun, lambda, rng, point);
-      }
-      if (sky_lit)
-        radiance +=
-            beta * sky_next_event(scene, position, node, lambda, rng, point,
-                                  [&](const Vec3& d) { return phase.eval(ray.direction, d); });
-      double pdf = 0.0;
-      ray = Ray{position, phase.sample(ray.direction, rng.uniform(), rng.uniform(), &pdf)};
-      last_scatter_pdf = pdf;
+      if (!collide(c, *collision, point, rng, s)) break;
     } else if (on_surface) {
-      const SurfaceMaterial& m = scene.surfaces[hit.surface]->material();
-      const double emissivity = m.emissivity_at(node.wavelength_um);
-      radiance += beta * emissivity * node.planck(m.temperature_k);
-      beta *= 1.0 - emissivity;
-      if (beta == 0.0) break;
-      const Vec3 position = ray.at(hit.t) + hit.normal * 1e-9;
-      if (scene.sun.enabled) {
-        // Lambertian reflection of the sun: β (ρ/π) cos θ_sun E_λ T, with ρ = 1 − ε.
-        const Vec3 to_sun = sample_sun_direction(scene.sun, rng);
-        const double cos_sun = dot(hit.normal, to_sun);
-        if (cos_sun > 0.0)
-          radiance += beta / std::numbers::pi * cos_sun * scene.sun.irradiance(node.wavelength_um) *
-                      transmittance_to_infinity(scene, position, to_sun, lambda, rng, point);
-      }
-      if (sky_lit)
-        radiance +=
-            beta * sky_next_event(scene, position, node, lambda, rng, point, [&](const Vec3& d) {
-              return std::max(0.0, dot(hit.normal, d)) * std::numbers::inv_pi;
-            });
-      ray = Ray{position,
-                local_to_world(hit.normal, sample_cosine_hemisphere(rng.uniform(), rng.uniform()))};
-      last_scatter_pdf = std::max(0.0, dot(hit.normal, ray.direction)) * std::numbers::inv_pi;
+      if (!reflect(c, hit, point, rng, s)) break;
     } else {
-      // After a bounce the sky was also sampled by next-event estimation: the
-      // two estimators are combined with the power heuristic.
-      const double sky = scene.sky.radiance(ray.direction, node.wavelength_um);
-      radiance += beta * sky *
-                  (depth == 0 || !sky_lit
-                       ? 1.0
-                       : power_heuristic(last_scatter_pdf, scene.sky.pdf(ray.direction)));
-      // The sun's disc is seen directly only by camera rays: after a bounce,
-      // next-event estimation already counts it.
-      if (depth == 0 && scene.settings.camera_sees_sun && scene.sun.enabled &&
-          dot(ray.direction, scene.sun.direction()) >= scene.sun.cos_half_angle())
-        radiance += beta * scene.sun.radiance(node.wavelength_um);
+      escape(c, depth, s);
       break;
     }
     if (depth + 1 >= settings.russian_roulette_depth) {
       // Survival probability β, capped at 0.99 so that paths in lossless
       // enclosures still end; the cap costs little variance (1 % per bounce).
-      const double survive = std::min(0.99, beta);
+      const double survive = std::min(0.99, s.beta);
       if (rng.uniform() >= survive) break;
-      beta /= survive;
+      s.beta /= survive;
     }
   }
-  return radiance;
+  return s.radiance;
 }
 
 }  // namespace obscura

@@ -93,6 +93,140 @@ struct Launch {
   bool scattered = false;  // counts as scattered already (emission photons)
 };
 
+// A photon's journey after launch: free flights by delta tracking, stored at
+// scattering events (all of them with store_first_scatter, else from the
+// second on for sun and environment photons), Russian roulette by the
+// albedo at collisions and by the reflectance at surfaces.
+void trace_photon(const Scene& scene, const SpectralNode& node, const SpectralLerp& lambda,
+                  const Launch& l, const PhotonTracingSettings& settings, Rng& rng,
+                  MediumPoint& scratch, std::vector<Photon>& stored) {
+  Ray ray = l.ray;
+  bool scattered = l.scattered;
+  for (int bounce = 0; bounce < settings.max_scatterings; ++bounce) {
+    SurfaceHit hit;
+    const bool on_surface =
+        intersect_surfaces(scene.surfaces, ray, 1e-9, std::numeric_limits<double>::infinity(), hit);
+    const auto t = sample_free_flight(*scene.medium, ray,
+                                      on_surface ? hit.t : std::numeric_limits<double>::infinity(),
+                                      lambda, rng, scratch);
+    if (t) {
+      const double sigma_a = lambda(scratch.sigma_a.data()),
+                   sigma_s = lambda(scratch.sigma_s.data());
+      if (rng.uniform() * (sigma_a + sigma_s) >= sigma_s) return;  // absorbed
+      const Vec3 x = ray.at(*t);
+      if (scattered || settings.store_first_scatter)
+        stored.push_back(
+            Photon{{static_cast<float>(x.x), static_cast<float>(x.y), static_cast<float>(x.z)},
+                   {static_cast<float>(ray.direction.x), static_cast<float>(ray.direction.y),
+                    static_cast<float>(ray.direction.z)},
+                   static_cast<float>(l.power)});
+      scattered = true;
+      const HenyeyGreenstein phase(std::clamp(lambda(scratch.g.data()), -0.999999, 0.999999));
+      ray = Ray{x, phase.sample(ray.direction, rng.uniform(), rng.uniform(), nullptr)};
+    } else if (on_surface) {
+      if (!scattered) return;  // its reflection is in the surface's own radiance
+      const double reflectance =
+          scene.surfaces[hit.surface]->material().reflectance_at(node.wavelength_um);
+      if (rng.uniform() >= reflectance) return;
+      ray = Ray{ray.at(hit.t) + hit.normal * 1e-9,
+                local_to_world(hit.normal, sample_cosine_hemisphere(rng.uniform(), rng.uniform()))};
+    } else {
+      return;  // escaped
+    }
+  }
+}
+
+// The three sources of one spectral node and how a photon leaves each.
+class PhotonSources {
+ public:
+  PhotonSources(const Scene& scene, const SpectralNode& node)
+      : scene_(scene),
+        node_(node),
+        lambda_(node.lerp()),
+        sphere_(photon_bounding_sphere(scene)),
+        disc_area_(std::numbers::pi * sphere_.radius_m * sphere_.radius_m),
+        lattice_(*scene.medium, node) {}
+
+  // The powers used to share the photons out: the sun's beam through the
+  // disc, the environment by kEnvironmentPilot pilot launches, the emission
+  // lattice's estimate.
+  PhotonSourcePowers estimate(const PhotonTracingSettings& settings,
+                              std::uint64_t stream_base) const {
+    PhotonSourcePowers est;
+    if (scene_.sun.enabled) est.sun_w_um = scene_.sun.irradiance(node_.wavelength_um) * disc_area_;
+    double sum = 0;
+    MediumPoint scratch;
+    for (int i = 0; i < kEnvironmentPilot; ++i) {
+      Rng rng(settings.seed, stream_base + (1ull << 38) + static_cast<std::uint64_t>(i));
+      sum += environment(rng, scratch).power;
+    }
+    est.environment_w_um = sum / kEnvironmentPilot;
+    est.emission_w_um = lattice_.estimated_power();
+    return est;
+  }
+
+  // Sun photon (power for one of n_sun): a direction over the disc, from
+  // outside the sphere towards a point of the disc across the beam. Surfaces
+  // on the way are met by the tracing (an unscattered photon stops there):
+  // the line must not be dropped because the disc point itself is shaded
+  // (e.g. below the ground), since the part of the line before the shading
+  // surface can still cross the cloud.
+  Launch sun(Rng& rng, long long n_sun) const {
+    Launch l;
+    const Vec3 d = -sample_sun_direction(scene_.sun, rng);
+    const Vec3 p = point_on_disc(sphere_.center, d, sphere_.radius_m, rng);
+    l.power = scene_.sun.irradiance(node_.wavelength_um) * disc_area_ / n_sun;
+    l.ray = Ray{p - d * (1.01 * sphere_.radius_m), d};
+    return l;
+  }
+
+  // Environment photon (power for one photon; the caller divides by N_env):
+  // direction uniform over the sphere, starting behind the disc on the first
+  // surface or at the sky.
+  Launch environment(Rng& rng, MediumPoint& scratch) const {
+    const Vec3 d = sample_uniform_sphere(rng.uniform(), rng.uniform());
+    const Vec3 p = point_on_disc(sphere_.center, d, sphere_.radius_m, rng);
+    Launch l;
+    SurfaceHit hit;
+    const Ray back{p, -d};
+    double radiance = 0;
+    if (intersect_surfaces(scene_.surfaces, back, 0.0, std::numeric_limits<double>::infinity(),
+                           hit)) {
+      const Vec3 s = back.at(hit.t);
+      radiance = surface_radiance(scene_, hit, s, node_, rng, scratch);
+      l.ray = Ray{s + hit.normal * 1e-9, d};
+    } else {
+      radiance = scene_.sky.radiance(-d, node_.wavelength_um);
+      l.ray = Ray{p - d * (1.01 * sphere_.radius_m), d};
+    }
+    l.power = radiance * kFourPi * disc_area_;
+    return l;
+  }
+
+  // Emission photon (power for one of n_em): a point drawn from the lattice,
+  // weighted by 4π σa B(T) over its density, a uniform direction.
+  Launch emission(Rng& rng, MediumPoint& scratch, long long n_em) const {
+    Launch l;
+    double pdf = 0;
+    const Vec3 x = lattice_.sample(rng, &pdf);
+    scene_.medium->coefficients_at(x, scratch);
+    const double f =
+        kFourPi * lambda_(scratch.sigma_a.data()) * node_.planck(scratch.temperature_k);
+    l.power = f / (pdf * n_em);
+    l.ray = Ray{x, sample_uniform_sphere(rng.uniform(), rng.uniform())};
+    l.scattered = true;
+    return l;
+  }
+
+ private:
+  const Scene& scene_;
+  const SpectralNode& node_;
+  SpectralLerp lambda_;
+  BoundingSphere sphere_;
+  double disc_area_;
+  EmissionLattice lattice_;
+};
+
 }  // namespace
 
 BoundingSphere photon_bounding_sphere(const Scene& scene) {
@@ -105,47 +239,11 @@ TracedPhotons trace_photons(const Scene& scene, const SpectralNode& node, std::u
                             const PhotonTracingSettings& settings) {
   TracedPhotons out;
   if (!scene.medium || settings.photons <= 0) return out;
-  const Medium& medium = *scene.medium;
-  const BoundingSphere sphere = photon_bounding_sphere(scene);
-  const double disc_area = std::numbers::pi * sphere.radius_m * sphere.radius_m;
+  const PhotonSources sources(scene, node);
   const SpectralLerp lambda = node.lerp();
 
-  // Environment photon: direction uniform over the sphere, start behind the
-  // disc on the first surface or at the sky.
-  auto launch_environment = [&](Rng& rng, MediumPoint& scratch) {
-    const Vec3 d = sample_uniform_sphere(rng.uniform(), rng.uniform());
-    const Vec3 p = point_on_disc(sphere.center, d, sphere.radius_m, rng);
-    Launch l;
-    SurfaceHit hit;
-    const Ray back{p, -d};
-    double radiance = 0;
-    if (intersect_surfaces(scene.surfaces, back, 0.0, std::numeric_limits<double>::infinity(),
-                           hit)) {
-      const Vec3 s = back.at(hit.t);
-      radiance = surface_radiance(scene, hit, s, node, rng, scratch);
-      l.ray = Ray{s + hit.normal * 1e-9, d};
-    } else {
-      radiance = scene.sky.radiance(-d, node.wavelength_um);
-      l.ray = Ray{p - d * (1.01 * sphere.radius_m), d};
-    }
-    l.power = radiance * kFourPi * disc_area;  // ÷ N_env later
-    return l;
-  };
-
   // Share the photons out by power.
-  PhotonSourcePowers& est = out.estimated;
-  if (scene.sun.enabled) est.sun_w_um = scene.sun.irradiance(node.wavelength_um) * disc_area;
-  {
-    double sum = 0;
-    MediumPoint scratch;
-    for (int i = 0; i < kEnvironmentPilot; ++i) {
-      Rng rng(settings.seed, stream_base + (1ull << 38) + static_cast<std::uint64_t>(i));
-      sum += launch_environment(rng, scratch).power;
-    }
-    est.environment_w_um = sum / kEnvironmentPilot;
-  }
-  const EmissionLattice lattice(medium, node);
-  est.emission_w_um = lattice.estimated_power();
+  const PhotonSourcePowers& est = out.estimated = sources.estimate(settings, stream_base);
   const double total = est.total();
   if (!(total > 0)) return out;
   const long long n = settings.photons;
@@ -156,6 +254,8 @@ TracedPhotons trace_photons(const Scene& scene, const SpectralNode& node, std::u
   out.launched_count[kEnvironment] = n_env;
   out.launched_count[kEmission] = est.emission_w_um > 0 ? n_em : 0;
 
+  // Photon i draws from stream i: chunks of them in parallel, gathered in
+  // chunk order, so the result does not depend on the thread count.
   const std::size_t chunks = static_cast<std::size_t>((n + kChunk - 1) / kChunk);
   std::vector<std::vector<Photon>> stored(chunks);
   std::vector<std::array<double, 3>> launched(chunks, {0, 0, 0});
@@ -168,70 +268,18 @@ TracedPhotons trace_photons(const Scene& scene, const SpectralNode& node, std::u
       Source source;
       if (i < n_sun) {
         source = kSun;
-        const Vec3 d = -sample_sun_direction(scene.sun, rng);
-        const Vec3 p = point_on_disc(sphere.center, d, sphere.radius_m, rng);
-        l.power = scene.sun.irradiance(node.wavelength_um) * disc_area / n_sun;
-        // From outside the sphere towards the disc. Surfaces on the way are
-        // met by the tracing below (an unscattered photon stops there): the
-        // line must not be dropped because the disc point p itself is shaded
-        // (e.g. below the ground), since the part of the line before the
-        // shading surface can still cross the cloud.
-        l.ray = Ray{p - d * (1.01 * sphere.radius_m), d};
+        l = sources.sun(rng, n_sun);
       } else if (i < n_sun + n_env) {
         source = kEnvironment;
-        l = launch_environment(rng, scratch);
+        l = sources.environment(rng, scratch);
         l.power /= n_env;
       } else {
         if (out.launched_count[kEmission] == 0) break;
         source = kEmission;
-        double pdf = 0;
-        const Vec3 x = lattice.sample(rng, &pdf);
-        medium.coefficients_at(x, scratch);
-        const double f =
-            kFourPi * lambda(scratch.sigma_a.data()) * node.planck(scratch.temperature_k);
-        l.power = f / (pdf * n_em);
-        l.ray = Ray{x, sample_uniform_sphere(rng.uniform(), rng.uniform())};
-        l.scattered = true;
+        l = sources.emission(rng, scratch, n_em);
       }
       launched[c][source] += l.power;
-      if (!(l.power > 0)) continue;
-
-      // Trace: store at scattering events, roulette by albedo and reflectance.
-      Ray ray = l.ray;
-      bool scattered = l.scattered;
-      for (int bounce = 0; bounce < settings.max_scatterings; ++bounce) {
-        SurfaceHit hit;
-        const bool on_surface = intersect_surfaces(scene.surfaces, ray, 1e-9,
-                                                   std::numeric_limits<double>::infinity(), hit);
-        const auto t = sample_free_flight(
-            medium, ray, on_surface ? hit.t : std::numeric_limits<double>::infinity(), lambda, rng,
-            scratch);
-        if (t) {
-          const double sigma_a = lambda(scratch.sigma_a.data()),
-                       sigma_s = lambda(scratch.sigma_s.data());
-          if (rng.uniform() * (sigma_a + sigma_s) >= sigma_s) break;  // absorbed
-          const Vec3 x = ray.at(*t);
-          if (scattered || settings.store_first_scatter)
-            stored[c].push_back(
-                Photon{{static_cast<float>(x.x), static_cast<float>(x.y), static_cast<float>(x.z)},
-                       {static_cast<float>(ray.direction.x), static_cast<float>(ray.direction.y),
-                        static_cast<float>(ray.direction.z)},
-                       static_cast<float>(l.power)});
-          scattered = true;
-          const HenyeyGreenstein phase(std::clamp(lambda(scratch.g.data()), -0.999999, 0.999999));
-          ray = Ray{x, phase.sample(ray.direction, rng.uniform(), rng.uniform(), nullptr)};
-        } else if (on_surface) {
-          if (!scattered) break;  // its reflection is in the surface's own radiance
-          const double reflectance =
-              scene.surfaces[hit.surface]->material().reflectance_at(node.wavelength_um);
-          if (rng.uniform() >= reflectance) break;
-          ray = Ray{
-              ray.at(hit.t) + hit.normal * 1e-9,
-              local_to_world(hit.normal, sample_cosine_hemisphere(rng.uniform(), rng.uniform()))};
-        } else {
-          break;  // escaped
-        }
-      }
+      if (l.power > 0) trace_photon(scene, node, lambda, l, settings, rng, scratch, stored[c]);
     }
   });
   std::size_t total_stored = 0;
