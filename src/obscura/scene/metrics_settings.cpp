@@ -1,15 +1,9 @@
 #include "obscura/scene/metrics_settings.h"
 
 #include "obscura/io/json_reader.h"
+#include "obscura/scene/sensor.h"
 
 namespace obscura {
-namespace {
-
-// No image is wider than this (the scene loader's limit on sensor sizes).
-constexpr int kMaxMarginPx = 16384;
-
-}  // namespace
-
 MetricsSettings parse_metrics_settings(JsonObject& m) {
   MetricsSettings ms;
   ms.transmittance_threshold = m.number_or("transmittance_threshold", ms.transmittance_threshold);
@@ -19,7 +13,7 @@ MetricsSettings parse_metrics_settings(JsonObject& m) {
   if (!(ms.screened_fraction > 0 && ms.screened_fraction <= 1))
     throw m.error("screened_fraction", "must lie in (0, 1]");
   const long long margin = m.integer_or("background_margin_px", ms.background_margin_px);
-  if (margin < 1 || margin > kMaxMarginPx)
+  if (margin < 1 || margin > kMaxImageSide)
     throw m.error("background_margin_px", "must be >= 1 pixel");
   ms.background_margin_px = static_cast<int>(margin);
   m.finish();

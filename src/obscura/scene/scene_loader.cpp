@@ -21,11 +21,6 @@
 #include "obscura/scene/scene.h"
 
 namespace obscura {
-namespace {
-
-constexpr int kMaxImageSide = 16384;
-
-}  // namespace
 
 SurfaceMaterial parse_surface_material(JsonObject& o) {
   SurfaceMaterial m;

@@ -8,6 +8,9 @@
 
 namespace obscura {
 
+// The largest image side a scene may ask for, px.
+inline constexpr int kMaxImageSide = 16384;
+
 struct Sensor {
   std::string name;
   PinholeCamera camera;
