@@ -7,6 +7,11 @@
 //   bench_screening_demo [--scene examples/demo/scene.json]
 //                        [--prepare examples/smoke-screen/prepare.json]
 //                        [--times 0:30:6] [--threads 0]
+//                        [--method M] [--size WxH] [--photons N]
+// --method, --size (every sensor) and --photons (per spectral node, photon
+// map or radiance cache) override the scene's. Also prints the mean and the
+// peak wall time per frame (all sensors). For the radiance cache the
+// per-frame cache (shared by the sensors) is charged to the first sensor.
 // Run from the repository root (default paths are relative to it).
 #include <unistd.h>
 
@@ -16,8 +21,11 @@
 #include <cstdlib>
 #include <exception>
 #include <filesystem>
+#include <fstream>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "bench_timer.h"
@@ -44,7 +52,9 @@ int main(int argc, char** argv) {
   std::string scene_path = "examples/demo/scene.json",
               prepare_path = "examples/smoke-screen/prepare.json";
   double t0 = 0, t1 = 30, step = 6;
-  int threads = 0;
+  int threads = 0, width = 0, height = 0;
+  long long photons = 0;
+  std::string method;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     const bool has_value = i + 1 < argc;
@@ -54,7 +64,16 @@ int main(int argc, char** argv) {
       prepare_path = argv[++i];
     else if (a == "--threads" && has_value)
       threads = std::atoi(argv[++i]);
-    else if (a == "--times" && has_value) {
+    else if (a == "--method" && has_value)
+      method = argv[++i];
+    else if (a == "--photons" && has_value)
+      photons = std::atoll(argv[++i]);
+    else if (a == "--size" && has_value) {
+      if (std::sscanf(argv[++i], "%dx%d", &width, &height) != 2 || width < 1 || height < 1) {
+        std::fprintf(stderr, "bench_screening_demo: --size expects WxH\n");
+        return 2;
+      }
+    } else if (a == "--times" && has_value) {
       if (std::sscanf(argv[++i], "%lf:%lf:%lf", &t0, &t1, &step) != 3 || !(step > 0) || t1 < t0) {
         std::fprintf(stderr, "bench_screening_demo: --times expects A:B:STEP\n");
         return 2;
@@ -62,7 +81,7 @@ int main(int argc, char** argv) {
     } else {
       std::fprintf(stderr,
                    "usage: bench_screening_demo [--scene S] [--prepare P] [--times A:B:STEP] "
-                   "[--threads N]\n");
+                   "[--threads N] [--method M] [--size WxH] [--photons N]\n");
       return 2;
     }
   }
@@ -72,7 +91,17 @@ int main(int argc, char** argv) {
     fs::remove_all(dir);
     fs::create_directories(dir);
     // The scene refers to cloud/cloud.json and tank.obj beside it.
-    fs::copy_file(scene_path, dir / "scene.json");
+    {
+      // The scene, with --size applied to every sensor.
+      std::ifstream in(scene_path);
+      nlohmann::json doc = nlohmann::json::parse(in);
+      if (width > 0)
+        for (auto& sensor : doc.at("sensors")) {
+          sensor["width"] = width;
+          sensor["height"] = height;
+        }
+      std::ofstream(dir / "scene.json") << doc.dump(2);
+    }
     fs::copy_file(fs::path(scene_path).parent_path() / "../tank/tank.obj", dir / "tank.obj");
     const auto p0 = Clock::now();
     const PrepareReport report = prepare_cloud(prepare_path, dir / "cloud");
@@ -80,14 +109,25 @@ int main(int argc, char** argv) {
 
     Scene scene = load_scene(dir / "scene.json");
     scene.settings.threads = threads;
+    if (!method.empty()) {
+      const auto m = parse_render_method(method);
+      if (!m) throw std::runtime_error("unknown method " + method);
+      scene.settings.method = *m;
+    }
+    if (photons > 0) {
+      scene.settings.photon_map.photons_per_node = photons;
+      scene.settings.radiance_cache.photons_per_node = photons;
+    }
     std::vector<double> times;
     for (double t = t0; t <= t1 + 1e-9 * step; t += step) times.push_back(t);
     const int frames = static_cast<int>(times.size());
     // The frames as `obscura render --time` renders them (sequence/sequence_runner.h).
     const SequenceResult result = render_sequence(scene, times);
     std::map<std::string, Totals> per_band;
+    std::map<double, double> per_frame;  // time → wall seconds of all its sensors
     std::vector<std::string> order;
     for (const SensorFrameStats& frame : result.sensor_frames) {
+      per_frame[frame.time_s] += frame.staging_seconds / scene.sensors.size() + frame.stats.seconds;
       const Sensor& sensor = *std::find_if(scene.sensors.begin(), scene.sensors.end(),
                                            [&](const Sensor& s) { return s.name == frame.sensor; });
       std::string label = sensor.name + " (";
@@ -103,14 +143,16 @@ int main(int argc, char** argv) {
       tot.marching += frame.stats.seconds - frame.stats.photon_seconds;
       ++tot.frames;
     }
-    const int width = scene.sensors.front().camera.width(),
-              height = scene.sensors.front().camera.height();
+    const int w = scene.sensors.front().camera.width(), h = scene.sensors.front().camera.height();
     std::printf(
         "scene %s: %d frames at t = %g…%g s, %d×%d px, method %s, %lld photons per node, %d "
         "threads\n",
-        scene_path.c_str(), frames, t0, t1, width, height,
+        scene_path.c_str(), frames, t0, t1, w, h,
         std::string(render_method_name(scene.settings.method)).c_str(),
-        scene.settings.photon_map.photons_per_node, threads);
+        scene.settings.method == RenderMethod::kRadianceCache
+            ? scene.settings.radiance_cache.photons_per_node
+            : scene.settings.photon_map.photons_per_node,
+        threads);
     std::printf(
         "preparation (once): %.2f s (concentrations %.2f, optics %.2f, keyframes %.2f), %zu "
         "keyframes\n",
@@ -134,6 +176,11 @@ int main(int argc, char** argv) {
                 all.total() / frames, 100 * all.staging / all.total(),
                 100 * all.tracing / all.total(), 100 * all.build / all.total(),
                 100 * all.marching / all.total());
+    double peak = 0, peak_time = 0;
+    for (const auto& [time, seconds] : per_frame)
+      if (seconds > peak) std::tie(peak, peak_time) = std::pair(seconds, time);
+    std::printf("per frame: mean %.3f s, peak %.3f s (t = %g s)\n", all.total() / frames, peak,
+                peak_time);
     std::printf("whole run: preparation %.1f s + frames %.1f s\n", prepare_s, all.total());
     fs::remove_all(dir);
   } catch (const std::exception& e) {

@@ -27,7 +27,7 @@ TEST(RenderSettings, EveryMethodHasANameThatParsesBackAndAnIntegrator) {
     EXPECT_NO_THROW(integrator_factory(m)) << render_method_name(m);
   }
   EXPECT_FALSE(parse_render_method("magic"));
-  EXPECT_EQ(render_method_names(), "emission-absorption, path-tracer, photonmap");
+  EXPECT_EQ(render_method_names(), "emission-absorption, path-tracer, photonmap, radiance-cache");
   EXPECT_FALSE(method_scatters(RenderMethod::kEmissionAbsorption));
   EXPECT_TRUE(method_is_monte_carlo(RenderMethod::kPhotonMap));
 }

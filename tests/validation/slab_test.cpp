@@ -7,6 +7,8 @@
 #include <cmath>
 #include <fstream>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include "obscura/core/error.h"
 #include "obscura/validation/validation_cases.h"
@@ -30,9 +32,11 @@ double z_for(int k) {
   return hi;
 }
 
-::testing::AssertionResult agrees(const ValidationRow& r, double reference, double z) {
+::testing::AssertionResult agrees(const ValidationRow& r, double reference, double z,
+                                  double tolerance = 0.01) {
   const double diff = std::abs(r.obtained - reference);
-  if (diff <= std::max(z * r.stderr_mean, 0.01 * reference) && r.stderr_mean <= 0.01 * reference)
+  if (diff <= std::max(z * r.stderr_mean, tolerance * reference) &&
+      r.stderr_mean <= tolerance * reference)
     return ::testing::AssertionSuccess();
   return ::testing::AssertionFailure()
          << r.case_name << " " << r.quantity << ": obtained " << r.obtained << " ± "
@@ -77,8 +81,17 @@ std::optional<SlabReference> published_row(const SlabSpec& s) {
   return std::nullopt;
 }
 
-TEST(SlabValidation, VanDeHulstPublishedProblems) {
-  const Published problems[] = {
+// The path tracer (the reference solver) at 1 %, and the radiance cache at
+// 2 % (its photons and lattice periodic across the slab's sides, issue 13).
+ValidationOptions for_method(RenderMethod method) {
+  ValidationOptions o;
+  o.settings.method = method;
+  o.settings.radiance_cache.photons_per_node = 1000000;
+  return o;
+}
+
+void published_problems(RenderMethod method, double tolerance) {
+  const Published all[] = {
       {"1a", {0.2, 0.03125, 0.0, SlabIncidence::kCollimated, 0.1}},
       {"1b", {1.0, 0.03125, 0.0, SlabIncidence::kCollimated, 0.1}},
       {"1c", {0.99, 0.03125, 0.0, SlabIncidence::kDiffuse, 1.0}},
@@ -87,38 +100,66 @@ TEST(SlabValidation, VanDeHulstPublishedProblems) {
       {"3b", {1.0, 8.0, 0.75, SlabIncidence::kCollimated, 1.0}},
   };
   const double z = z_for(12);
-  for (const auto& p : problems) {
+  for (const auto& p : all) {
+    // The radiance cache fails 1d (R +24 %, docs/validation.md): at τ 32 a
+    // cell of the default lattice is one optical depth thick and the grazing
+    // sun's (μ0 0.1) single scattering falls by e^{−10} across it, which the
+    // cell quadrature's parabola in S does not follow.
+    if (method == RenderMethod::kRadianceCache && std::string(p.problem) == "1d") continue;
     const auto ref = published_row(p.slab);
     ASSERT_TRUE(ref) << "problem " << p.problem << " missing from " << kTable;
-    const auto rows = validate_slab(p.slab, ref, ValidationOptions{});
-    EXPECT_TRUE(agrees(quantity(rows, "R"), ref->r, z)) << "problem " << p.problem;
+    const auto rows = validate_slab(p.slab, ref, for_method(method));
+    EXPECT_TRUE(agrees(quantity(rows, "R"), ref->r, z, tolerance)) << "problem " << p.problem;
     if (ref->t > 0)
-      EXPECT_TRUE(agrees(quantity(rows, "T"), ref->t, z)) << "problem " << p.problem;
+      EXPECT_TRUE(agrees(quantity(rows, "T"), ref->t, z, tolerance)) << "problem " << p.problem;
     else
       EXPECT_LT(quantity(rows, "T").obtained, 1e-6) << "problem " << p.problem;
   }
 }
 
+TEST(SlabValidation, VanDeHulstPublishedProblems) {
+  published_problems(RenderMethod::kPathTracer, 0.01);
+}
+
+TEST(SlabValidation, RadianceCacheVanDeHulstPublishedProblems) {
+  published_problems(RenderMethod::kRadianceCache, 0.02);
+}
+
 // Every (albedo, τ, g, incidence) of the converged DISORT grid (NSTR = 128,
-// ~1e-9): albedo {0.5, 0.9, 0.99} × τ {0.1, 1, 4} × g {0, 0.5, 0.85}.
-TEST(SlabValidation, ConvergedDisortGrid) {
-  const double z = z_for(54 * 3);
+// ~1e-9): albedo {0.5, 0.9, 0.99} × τ {0.1, 1, 4} × g {0, 0.5, 0.85}; `gs`
+// the asymmetries tested.
+void converged_grid(RenderMethod method, double tolerance, const std::vector<double>& gs,
+                    int expected) {
+  const double z = z_for(expected);
   int compared = 0;
   for (double albedo : {0.5, 0.9, 0.99})
     for (double tau : {0.1, 1.0, 4.0})
-      for (double g : {0.0, 0.5, 0.85})
+      for (double g : gs)
         for (auto incidence : {SlabIncidence::kCollimated, SlabIncidence::kDiffuse}) {
           const SlabSpec slab{albedo, tau, g, incidence, 1.0};
           const auto ref = find_slab_reference(kTable, slab);
           ASSERT_TRUE(ref);
           ASSERT_EQ(ref->source.rfind("computed: DISORT", 0), 0u) << ref->source;
-          const auto rows = validate_slab(slab, ref, ValidationOptions{});
-          EXPECT_TRUE(agrees(quantity(rows, "R"), ref->r, z));
-          EXPECT_TRUE(agrees(quantity(rows, "T"), ref->t, z));
-          EXPECT_TRUE(agrees(quantity(rows, "T_direct"), ref->t_direct, z));
+          const auto rows = validate_slab(slab, ref, for_method(method));
+          EXPECT_TRUE(agrees(quantity(rows, "R"), ref->r, z, tolerance));
+          EXPECT_TRUE(agrees(quantity(rows, "T"), ref->t, z, tolerance));
+          EXPECT_TRUE(agrees(quantity(rows, "T_direct"), ref->t_direct, z, tolerance));
           compared += 3;
         }
-  EXPECT_EQ(compared, 162);
+  EXPECT_EQ(compared, expected);
+}
+
+TEST(SlabValidation, ConvergedDisortGrid) {
+  converged_grid(RenderMethod::kPathTracer, 0.01, {0.0, 0.5, 0.85}, 162);
+}
+
+// The radiance cache on the rows with g ≤ 0.5. With g = 0.85 its reflectance
+// is off by up to 35 % (docs/validation.md): the incident radiance at
+// spherical-harmonic degree ≤ 3 cannot carry what a phase function that
+// peaked sees of the sky's step at the horizon and of the second-order
+// light, whose Legendre weights g^l are still 0.6 at l = 3.
+TEST(SlabValidation, RadianceCacheConvergedDisortGrid) {
+  converged_grid(RenderMethod::kRadianceCache, 0.02, {0.0, 0.5}, 108);
 }
 
 TEST(SlabValidation, UnscatteredTransmittanceHasItsClosedForm) {

@@ -44,6 +44,14 @@ struct PlanckAtWavelength {
   double operator()(double temperature_k) const {
     return temperature_k > 0.0 ? a / std::expm1(b / temperature_k) : 0.0;
   }
+  // The same with exp where exp(x) − 1 loses nothing (x = c2/(λT) > 0.1, i.e.
+  // λT < 1.4e5 µm K: every obscurant band and temperature); exp is cheaper
+  // than expm1. Relative difference from operator() below 2e-15.
+  double fast(double temperature_k) const {
+    if (!(temperature_k > 0.0)) return 0.0;
+    const double x = b / temperature_k;
+    return a / (x > 0.1 ? std::exp(x) - 1.0 : std::expm1(x));
+  }
 };
 
 }  // namespace obscura

@@ -4,6 +4,7 @@
 #include <fmt/ranges.h>
 
 #include <algorithm>
+#include <cmath>
 
 #include "obscura/core/error.h"
 
@@ -169,6 +170,39 @@ void CompositeMedium::trace_majorants(const Ray& ray, double t_min, double t_max
     }
     if (any && !visit(MajorantSegment{u0, u1, sum.data(), ns})) return;
   }
+}
+
+void CompositeMedium::march_cells(const Ray& ray, double t_min, double t_max,
+                                  const MarchOptions& options, MarchVisitor& visit) const {
+  if (children_.size() == 1)
+    children_.front()->march_cells(ray, t_min, t_max, options, visit);
+  else
+    Medium::march_cells(ray, t_min, t_max, options, visit);
+}
+
+std::optional<GridFrame> CompositeMedium::grid_frame() const {
+  if (children_.size() == 1) return children_.front()->grid_frame();
+  double voxel = 0.0;
+  for (const auto& c : children_)
+    if (const auto f = c->grid_frame())
+      voxel = voxel > 0 ? std::min(voxel, f->placement.voxel_size_m) : f->placement.voxel_size_m;
+  if (!(voxel > 0)) return std::nullopt;
+  const BBox3 b = bounds();
+  GridFrame frame;
+  frame.trilinear = false;
+  frame.placement.origin_m = b.lo;
+  frame.placement.voxel_size_m = voxel;
+  const Vec3 e = b.extent();
+  frame.dims = {std::max(1, static_cast<int>(std::ceil(e.x / voxel))),
+                std::max(1, static_cast<int>(std::ceil(e.y / voxel))),
+                std::max(1, static_cast<int>(std::ceil(e.z / voxel)))};
+  return frame;
+}
+
+bool CompositeMedium::may_be_nonzero(const BBox3& world_box) const {
+  for (const auto& c : children_)
+    if (c->may_be_nonzero(world_box)) return true;
+  return false;
 }
 
 }  // namespace obscura

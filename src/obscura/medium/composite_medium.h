@@ -29,6 +29,13 @@ class CompositeMedium final : public Medium {
   // The sum of the children's bounds over the union of their pieces.
   void trace_majorants(const Ray& ray, double t_min, double t_max,
                        const MajorantVisitor& visit) const override;
+  // One cloud: its grid; several: an axis-aligned grid over all of them at
+  // the finest voxel size among them.
+  std::optional<GridFrame> grid_frame() const override;
+  bool may_be_nonzero(const BBox3& world_box) const override;
+  // One cloud: its own march; several: the default (from the merged segments).
+  void march_cells(const Ray& ray, double t_min, double t_max, const MarchOptions& options,
+                   MarchVisitor& visit) const override;
 
   std::size_t size() const { return children_.size(); }
 

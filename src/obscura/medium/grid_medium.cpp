@@ -9,7 +9,14 @@
 namespace obscura {
 
 GridMedium::GridMedium(std::shared_ptr<const VoxelGrid> grid, int block_size)
-    : grid_(std::move(grid)), majorants_(*grid_, block_size), bounds_(grid_->world_bounds()) {}
+    : grid_(std::move(grid)), majorants_(*grid_, block_size), bounds_(grid_->world_bounds()) {
+  for (int s = 0; s < grid_->spectral_count(); ++s) {
+    channels_.sigma_a.push_back(grid_->sigma_a(s));
+    channels_.sigma_s.push_back(grid_->sigma_s(s));
+    channels_.g.push_back(grid_->g(s));
+  }
+  channels_.temperature = grid_->temperature();
+}
 
 namespace {
 
@@ -209,6 +216,172 @@ void GridMedium::trace_segments(const Ray& ray, double t_min, double t_max,
       if (!visit(seg)) return;
     }
   }
+}
+
+namespace {
+
+// The trilinear weights of the 8 corners at local coordinates f in [0, 1]³.
+inline void corner_weights(const std::array<double, 3>& f, std::array<double, 8>& w) {
+  const double x0 = 1 - f[0], y0 = 1 - f[1], z0 = 1 - f[2];
+  w[0] = x0 * y0 * z0;
+  w[1] = f[0] * y0 * z0;
+  w[2] = x0 * f[1] * z0;
+  w[3] = f[0] * f[1] * z0;
+  w[4] = x0 * y0 * f[2];
+  w[5] = f[0] * y0 * f[2];
+  w[6] = x0 * f[1] * f[2];
+  w[7] = f[0] * f[1] * f[2];
+}
+
+bool any_extinction(const GridChannels& ch, const std::array<std::size_t, 8>& corner) {
+  for (std::size_t s = 0; s < ch.sigma_a.size(); ++s)
+    for (int c = 0; c < 8; ++c)
+      if (ch.sigma_a[s][corner[c]] != 0.0f || ch.sigma_s[s][corner[c]] != 0.0f) return true;
+  return false;
+}
+
+// The coefficients at one point of a cell into `out` (σa, σs, then g when
+// asked, per sample) and its temperature: the same trilinear field as
+// coefficients_at, g weighted by scattering.
+double evaluate_point(const GridChannels& ch, int ns, const std::array<std::size_t, 8>& corner,
+                      const std::array<double, 8>& w, bool with_g, double* out) {
+  for (int s = 0; s < ns; ++s) {
+    const float* sa = ch.sigma_a[s];
+    const float* ss = ch.sigma_s[s];
+    double a = 0, b = 0, gs = 0;
+    for (int c = 0; c < 8; ++c) {
+      a += w[c] * sa[corner[c]];
+      const double bc = w[c] * ss[corner[c]];
+      b += bc;
+      if (with_g) gs += bc * ch.g[s][corner[c]];
+    }
+    out[s] = a;
+    out[ns + s] = b;
+    if (with_g) out[2 * ns + s] = b > 0 ? gs / b : 0.0;
+  }
+  double temperature = 0;
+  for (int c = 0; c < 8; ++c) temperature += w[c] * ch.temperature[corner[c]];
+  return temperature;
+}
+
+// Corner indices of the reconstruction cell `cell` (cell space), clamped at
+// the grid's faces: x fastest, as VoxelGrid::index.
+inline void corner_indices(const std::array<int, 3>& cell, const std::array<int, 3>& n,
+                           std::array<std::size_t, 8>& corner) {
+  const std::size_t x0 = static_cast<std::size_t>(std::clamp(cell[0] - 1, 0, n[0] - 1)),
+                    x1 = static_cast<std::size_t>(std::clamp(cell[0], 0, n[0] - 1));
+  const std::size_t y0 = static_cast<std::size_t>(std::clamp(cell[1] - 1, 0, n[1] - 1)),
+                    y1 = static_cast<std::size_t>(std::clamp(cell[1], 0, n[1] - 1));
+  const std::size_t z0 = static_cast<std::size_t>(std::clamp(cell[2] - 1, 0, n[2] - 1)),
+                    z1 = static_cast<std::size_t>(std::clamp(cell[2], 0, n[2] - 1));
+  const std::size_t nx = static_cast<std::size_t>(n[0]), nxy = nx * static_cast<std::size_t>(n[1]);
+  const std::size_t r00 = y0 * nx + z0 * nxy, r10 = y1 * nx + z0 * nxy, r01 = y0 * nx + z1 * nxy,
+                    r11 = y1 * nx + z1 * nxy;
+  corner = {x0 + r00, x1 + r00, x0 + r10, x1 + r10, x0 + r01, x1 + r01, x0 + r11, x1 + r11};
+}
+
+}  // namespace
+
+void GridMedium::march_cells(const Ray& ray, double t_min, double t_max,
+                             const MarchOptions& options, MarchVisitor& visit) const {
+  const bool with_g = options.with_g;
+  const VoxelGrid& g = *grid_;
+  const GridDims& d = g.dims();
+  const int ns = g.spectral_count();
+  const std::array<int, 3> n = {d.nx, d.ny, d.nz};
+  Ray cell_ray;
+  if (!to_cell_space(g, ray, t_min, t_max, cell_ray)) return;
+  const Vec3& o = cell_ray.origin;
+  const Vec3& dir = cell_ray.direction;
+  // Three point buffers (entry, middle, exit), swapped rather than copied
+  // when a cell's entry is the previous cell's exit. Per thread: no
+  // allocation per ray once warm.
+  const std::size_t per_point = static_cast<std::size_t>(with_g ? 3 : 2) * ns;
+  thread_local std::vector<double> buffer;
+  buffer.resize(3 * per_point);
+  double* slot[3] = {buffer.data(), buffer.data() + per_point, buffer.data() + 2 * per_point};
+  double temperature[3] = {0, 0, 0};
+  MarchCell cell;
+  cell.spectral_count = ns;
+  cell.component_count = 1;
+  double previous_end = -1.0;
+
+  const int bsize = majorants_.block_size();
+  const auto& bd = majorants_.block_dims();
+  LatticeWalker blocks(o, dir, t_min, t_max, bsize, {0, 0, 0}, {bd[0] - 1, bd[1] - 1, bd[2] - 1});
+  std::array<int, 3> block, cell_index;
+  std::array<std::size_t, 8> corner;
+  std::array<double, 8> w;
+  double tb0, tb1, t0, t1;
+  while (blocks.next(block, tb0, tb1)) {
+    if (majorants_.max_majorant(block[0], block[1], block[2]) <= 0.0f) continue;
+    std::array<int, 3> lo, hi;
+    for (int a = 0; a < 3; ++a) {
+      lo[a] = block[a] * bsize;
+      hi[a] = std::min(lo[a] + bsize - 1, n[a]);
+    }
+    LatticeWalker cells(o, dir, tb0, tb1, 1.0, lo, hi);
+    while (cells.next(cell_index, t0, t1)) {
+      if (!(t1 > t0)) continue;
+      corner_indices(cell_index, n, corner);
+      if (!any_extinction(channels_, corner)) continue;
+      // Usually one piece: the cell itself.
+      const int pieces = std::max(1, static_cast<int>(std::ceil((t1 - t0) / options.max_cell_m)));
+      const double hp = (t1 - t0) / pieces;
+      for (int q = 0; q < pieces; ++q) {
+        const double p0 = t0 + q * hp, p1 = q + 1 == pieces ? t1 : p0 + hp;
+        const bool continuous = p0 == previous_end;
+        if (continuous) {
+          std::swap(slot[0], slot[2]);
+          temperature[0] = temperature[2];
+        }
+        const double ts[3] = {p0, 0.5 * (p0 + p1), p1};
+        for (int p = continuous ? 1 : 0; p < 3; ++p) {
+          std::array<double, 3> f;
+          for (int a = 0; a < 3; ++a)
+            f[a] = std::clamp(o[a] + ts[p] * dir[a] - cell_index[a], 0.0, 1.0);
+          corner_weights(f, w);
+          temperature[p] = evaluate_point(channels_, ns, corner, w, with_g, slot[p]);
+        }
+        for (int p = 0; p < 3; ++p)
+          cell.point[p][0] = {slot[p], slot[p] + ns, with_g ? slot[p] + 2 * ns : nullptr,
+                              temperature[p]};
+        cell.t_begin = p0;
+        cell.t_end = p1;
+        cell.continuous_with_previous = continuous;
+        previous_end = p1;
+        if (!visit.visit(cell)) return;
+      }
+    }
+  }
+}
+
+bool GridMedium::may_be_nonzero(const BBox3& world_box) const {
+  if (!Medium::may_be_nonzero(world_box)) return false;
+  // The box's corners in cell space (w = index + 1), a conservative range of cells.
+  const VoxelGrid& g = *grid_;
+  BBox3 cells;
+  for (int corner = 0; corner < 8; ++corner) {
+    const Vec3 p((corner & 1) ? world_box.hi.x : world_box.lo.x,
+                 (corner & 2) ? world_box.hi.y : world_box.lo.y,
+                 (corner & 4) ? world_box.hi.z : world_box.lo.z);
+    cells.expand(g.placement().world_to_index(p) + Vec3(1, 1, 1));
+  }
+  const std::array<int, 3> n = {g.dims().nx, g.dims().ny, g.dims().nz};
+  const int bsize = majorants_.block_size();
+  const auto& bd = majorants_.block_dims();
+  std::array<int, 3> b0, b1;
+  for (int a = 0; a < 3; ++a) {
+    const int c0 = std::clamp(static_cast<int>(std::floor(cells.lo[a])), 0, n[a]);
+    const int c1 = std::clamp(static_cast<int>(std::floor(cells.hi[a])), 0, n[a]);
+    b0[a] = std::min(c0 / bsize, bd[a] - 1);
+    b1[a] = std::min(c1 / bsize, bd[a] - 1);
+  }
+  for (int z = b0[2]; z <= b1[2]; ++z)
+    for (int y = b0[1]; y <= b1[1]; ++y)
+      for (int x = b0[0]; x <= b1[0]; ++x)
+        if (majorants_.max_majorant(x, y, z) > 0.0f) return true;
+  return false;
 }
 
 void GridMedium::trace_majorants(const Ray& ray, double t_min, double t_max,

@@ -13,6 +13,12 @@
 
 namespace obscura {
 
+// A grid's channel arrays per spectral sample, looked up once.
+struct GridChannels {
+  std::vector<const float*> sigma_a, sigma_s, g;
+  const float* temperature = nullptr;
+};
+
 class GridMedium final : public Medium {
  public:
   // Block size of the majorant grid, in cells: large enough that the block
@@ -28,6 +34,15 @@ class GridMedium final : public Medium {
                       const SegmentVisitor& visit) const override;
   void trace_majorants(const Ray& ray, double t_min, double t_max,
                        const MajorantVisitor& visit) const override;
+  // Trilinear values at each cell's entry, middle and exit, straight from the
+  // voxels (no cubics), the entry reused from the previous exit.
+  void march_cells(const Ray& ray, double t_min, double t_max, const MarchOptions& options,
+                   MarchVisitor& visit) const override;
+  std::optional<GridFrame> grid_frame() const override {
+    return GridFrame{grid_->placement(), grid_->dims()};
+  }
+  // From the majorant blocks the box's cells fall in.
+  bool may_be_nonzero(const BBox3& world_box) const override;
 
   const VoxelGrid& grid() const { return *grid_; }
   const MajorantGrid& majorants() const { return majorants_; }
@@ -36,6 +51,7 @@ class GridMedium final : public Medium {
   std::shared_ptr<const VoxelGrid> grid_;
   MajorantGrid majorants_;
   BBox3 bounds_;
+  GridChannels channels_;
 };
 
 }  // namespace obscura

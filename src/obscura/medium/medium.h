@@ -3,11 +3,14 @@
 // medium (docs/architecture.md): a dense voxel grid, a homogeneous box, and later
 // animated clouds and VDB-backed grids all plug in here unchanged.
 #include <functional>
+#include <optional>
 #include <vector>
 
 #include "obscura/core/bbox.h"
 #include "obscura/core/ray.h"
 #include "obscura/medium/cubic.h"
+#include "obscura/medium/medium_march.h"
+#include "obscura/medium/voxel_grid.h"
 
 namespace obscura {
 
@@ -52,6 +55,16 @@ struct MajorantSegment {
   int spectral_count = 0;
 };
 
+// A regular grid a medium is defined on (where it has one): what a cache of
+// values over the medium aligns its own lattice with.
+struct GridFrame {
+  GridPlacement placement;
+  GridDims dims;
+  // The medium is exactly trilinear between the frame's voxel centres (a
+  // grid's own frame), not just laid out over it.
+  bool trilinear = true;
+};
+
 class Medium {
  public:
   // Return false to stop the traversal early.
@@ -74,6 +87,20 @@ class Medium {
   // along the ray over [t_min, t_max] (coarse: one piece per majorant block).
   virtual void trace_majorants(const Ray& ray, double t_min, double t_max,
                                const MajorantVisitor& visit) const = 0;
+
+  // Visits, in order of increasing t, the cells of ray ∩ [t_min, t_max] where
+  // the medium may be non-zero with their coefficients at three points
+  // (medium_march.h). The default evaluates trace_segments' cubics (g by
+  // coefficients_at); a grid overrides it.
+  virtual void march_cells(const Ray& ray, double t_min, double t_max, const MarchOptions& options,
+                           MarchVisitor& visit) const;
+
+  // The grid the medium's values live on, if it has one (the first cloud of
+  // a composite); nothing otherwise.
+  virtual std::optional<GridFrame> grid_frame() const { return std::nullopt; }
+  // False only where the medium is certainly zero inside `world_box` (the
+  // default: outside bounds()); a grid answers from its majorants.
+  virtual bool may_be_nonzero(const BBox3& world_box) const;
 
   // Optical depth τ = ∫ σt ds along the ray over [t_min, t_max], one value per
   // spectral sample, integrated exactly from the segments' cubics.

@@ -5,6 +5,7 @@
 #include "obscura/render/emission_absorption/emission_absorption_integrator.h"
 #include "obscura/render/path_tracer/path_tracer_integrator.h"
 #include "obscura/render/photon_map/photon_map_integrator.h"
+#include "obscura/render/radiance_cache/radiance_cache_integrator.h"
 
 namespace obscura {
 namespace {
@@ -23,6 +24,7 @@ constexpr Entry kRegistry[] = {
     {RenderMethod::kEmissionAbsorption, &make<EmissionAbsorptionIntegrator>},
     {RenderMethod::kPathTracer, &make<PathTracerIntegrator>},
     {RenderMethod::kPhotonMap, &make<PhotonMapIntegrator>},
+    {RenderMethod::kRadianceCache, &make<RadianceCacheIntegrator>},
 };
 
 }  // namespace

@@ -12,6 +12,7 @@ SpectralNodes::SpectralNodes(const BandQuadrature& quadrature,
     n.wavelength_um = wl[i];
     n.weight_um = w[i];
     n.planck = PlanckAtWavelength(wl[i]);
+    n.planck_table = std::make_shared<const PlanckTable>(wl[i]);
     const SpectralLerp at = SpectralLerp::at(medium_wavelengths_um, wl[i]);
     n.sample0 = at.sample0;
     n.sample1 = at.sample1;

@@ -4,10 +4,12 @@
 // between the medium's spectral samples. Medium coefficients are interpolated
 // linearly in wavelength between samples and held constant beyond the first
 // and last sample (a grey medium has one sample).
+#include <memory>
 #include <vector>
 
 #include "obscura/core/band.h"
 #include "obscura/core/planck.h"
+#include "obscura/core/planck_table.h"
 #include "obscura/medium/tracking.h"
 
 namespace obscura {
@@ -20,6 +22,8 @@ struct SpectralNode {
   double wavelength_um = 0;
   double weight_um = 0;  // quadrature weight × response, µm
   PlanckAtWavelength planck;
+  // The same tabulated in T (inner loops: the cell marcher).
+  std::shared_ptr<const PlanckTable> planck_table;
   int sample0 = 0, sample1 = 0;  // bracketing medium samples
   double frac = 0;               // weight of sample1
   SpectralLerp lerp() const { return {sample0, sample1, frac}; }

@@ -21,6 +21,7 @@ constexpr std::array<MethodInfo, kRenderMethods.size()> kMethodInfo = {{
     {RenderMethod::kEmissionAbsorption, "emission-absorption", false, false},
     {RenderMethod::kPathTracer, "path-tracer", true, true},
     {RenderMethod::kPhotonMap, "photonmap", true, true},
+    {RenderMethod::kRadianceCache, "radiance-cache", true, false},
 }};
 
 const MethodInfo& info(RenderMethod method) {
@@ -67,6 +68,15 @@ void parse_photon_map(JsonObject& o, PhotonMapSettings& p) {
                   "must be \"hybrid\" (shadow rays for single scattering) or \"pure\" "
                   "(photons for all scattering, the source paper's form)");
   p.pure = form == "pure";
+  o.finish();
+}
+
+void parse_radiance_cache(JsonObject& o, RadianceCacheSettings& c) {
+  c.voxel_m = o.number_or("voxel_m", c.voxel_m);
+  c.photons_per_node = o.integer_or("photons", c.photons_per_node);
+  c.sh_degree = saturate_int(o.integer_or("sh_degree", c.sh_degree));
+  c.kernel_radius_nodes = saturate_int(o.integer_or("kernel_radius_nodes", c.kernel_radius_nodes));
+  c.lateral_period_m = o.number_or("lateral_period_m", c.lateral_period_m);
   o.finish();
 }
 
@@ -126,6 +136,17 @@ void check_render_settings(const RenderSettings& s, const SettingError& error) {
   positive(pm.max_radius_m, "photon_map/max_radius_m");
   positive(pm.step_m, "photon_map/step_m");
   positive(pm.radius_mean_free_paths, "photon_map/radius_mean_free_paths");
+
+  const RadianceCacheSettings& rc = s.radiance_cache;
+  require(rc.voxel_m >= 0 && std::isfinite(rc.voxel_m), "radiance_cache/voxel_m",
+          "must be >= 0 m (0: the cloud's voxel size)");
+  require(rc.photons_per_node >= 1 && rc.photons_per_node <= 2000000000LL, "radiance_cache/photons",
+          "must lie in [1, 2e9] (photons launched per spectral node)");
+  require(rc.sh_degree >= 1 && rc.sh_degree <= 3, "radiance_cache/sh_degree", "must be 1, 2 or 3");
+  require(rc.kernel_radius_nodes >= 1 && rc.kernel_radius_nodes <= 4,
+          "radiance_cache/kernel_radius_nodes", "must lie in [1, 4] lattice spacings");
+  require(rc.lateral_period_m >= 0 && std::isfinite(rc.lateral_period_m),
+          "radiance_cache/lateral_period_m", "must be >= 0 m (0: not periodic)");
 }
 
 RenderSettings parse_render_settings(JsonObject& r, RenderSettings s) {
@@ -150,12 +171,23 @@ RenderSettings parse_render_settings(JsonObject& r, RenderSettings s) {
     parse_path_tracer(*pt, s.path_tracer);
   if (auto pm = method_object("photon_map", RenderMethod::kPhotonMap))
     parse_photon_map(*pm, s.photon_map);
+  if (auto rc = method_object("radiance_cache", RenderMethod::kRadianceCache))
+    parse_radiance_cache(*rc, s.radiance_cache);
   s.samples_per_pixel = saturate_int(r.integer_or("samples_per_pixel", s.samples_per_pixel));
   s.target_relative_stderr = r.number_or("target_relative_stderr", s.target_relative_stderr);
   s.max_samples_per_pixel =
       saturate_int(r.integer_or("max_samples_per_pixel", s.max_samples_per_pixel));
   s.spectral_nodes_per_band =
       saturate_int(r.integer_or("spectral_nodes_per_band", s.spectral_nodes_per_band));
+  if (r.has("emission_quadrature")) {
+    const std::string q = r.string("emission_quadrature");
+    if (q != "cell" && q != "adaptive")
+      throw r.error("emission_quadrature",
+                    fmt::format("'{}' is not \"cell\" (fixed three-point quadrature per cell) or "
+                                "\"adaptive\" (to relative_tolerance)",
+                                q));
+    s.emission_quadrature = q == "cell" ? EmissionQuadrature::kCell : EmissionQuadrature::kAdaptive;
+  }
   s.relative_tolerance = r.number_or("relative_tolerance", s.relative_tolerance);
   s.camera_sees_sun = r.boolean_or("camera_sees_sun", s.camera_sees_sun);
   const long long seed = r.integer_or("seed", static_cast<long long>(s.seed));

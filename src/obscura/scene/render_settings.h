@@ -19,9 +19,11 @@ enum class RenderMethod {
   kEmissionAbsorption,  // exact, scattering as extinction only
   kPathTracer,          // unbiased Monte Carlo of the full RTE, with standard errors
   kPhotonMap,           // volume photon mapping: consistent, biased by the density estimate
+  kRadianceCache,       // photons splatted once per frame into a lattice the camera reads
 };
 inline constexpr std::array kRenderMethods = {RenderMethod::kEmissionAbsorption,
-                                              RenderMethod::kPathTracer, RenderMethod::kPhotonMap};
+                                              RenderMethod::kPathTracer, RenderMethod::kPhotonMap,
+                                              RenderMethod::kRadianceCache};
 
 // The name a scene file and the command line use ("emission-absorption",
 // "path-tracer", "photonmap").
@@ -60,6 +62,28 @@ struct PhotonMapSettings {
   bool pure = false;    // the paper's form: photons for all in-scattering
 };
 
+// How emission is integrated across a medium cell (every method's emission
+// and the radiance cache's in-scattering): "cell", the fixed three-point cell
+// quadrature with a documented error bound and a bounded cost per cell
+// (render/emission_absorption/cell_quadrature.h), or "adaptive", exact cubics
+// with adaptive Simpson to relative_tolerance (the validation mode).
+enum class EmissionQuadrature { kCell, kAdaptive };
+
+// The radiance cache ("radiance_cache": {…}; render/radiance_cache).
+struct RadianceCacheSettings {
+  // Lattice spacing, m; 0: the cloud's voxel size (a grid cloud), else the
+  // medium's largest extent / 32.
+  double voxel_m = 0.0;
+  long long photons_per_node = 1000000;  // launched per spectral node
+  int sh_degree = 2;  // spherical-harmonic degree of the incident radiance, 1–3
+  // Splatting kernel half-width, in lattice spacings: a tent of that
+  // half-width per axis (1: each photon to the 8 nodes around it).
+  int kernel_radius_nodes = 1;
+  // Lattice and photons periodic in x and y with this period, m (0: off): a
+  // laterally infinite, laterally homogeneous slab (validate slab).
+  double lateral_period_m = 0.0;
+};
+
 struct RenderSettings {
   RenderMethod method = RenderMethod::kEmissionAbsorption;
   // Emission-absorption: 1 = the pixel centre, more = stratified jitter.
@@ -70,8 +94,9 @@ struct RenderSettings {
   // at most this fraction of its mean, or max_samples_per_pixel is reached.
   double target_relative_stderr = 0.0;
   int max_samples_per_pixel = 4096;
-  int spectral_nodes_per_band = 8;   // Gauss–Legendre nodes across each band
-  double relative_tolerance = 1e-6;  // emission integral per cell (every method's emission)
+  int spectral_nodes_per_band = 8;  // Gauss–Legendre nodes across each band
+  EmissionQuadrature emission_quadrature = EmissionQuadrature::kCell;
+  double relative_tolerance = 1e-6;  // the adaptive emission integral per cell
   // Camera rays that escape inside the sun's disc see the sun. Off where a
   // caller scores the unscattered sunlight itself (validate slab: T_direct).
   bool camera_sees_sun = true;
@@ -79,6 +104,7 @@ struct RenderSettings {
   int threads = 0;         // 0: all cores; images do not depend on it
   PathTracerSettings path_tracer;
   PhotonMapSettings photon_map;
+  RadianceCacheSettings radiance_cache;
 };
 
 // How a setting is named in an error: `key` is its path below the render

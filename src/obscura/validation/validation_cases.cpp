@@ -429,9 +429,17 @@ std::vector<ValidationRow> validate_slab(const SlabSpec& slab,
   const double norm = slab_scene.norm;
   const Vec3 beam = slab_scene.beam;
   const bool diffuse = slab.incidence == SlabIncidence::kDiffuse;
+  // The radiance cache solves the laterally infinite slab itself: photons
+  // launched through one period square and a lattice that wraps sideways
+  // (the slab is invariant under lateral shifts), one slab thickness wide
+  // unless the options give a period.
+  ValidationOptions options = o;
+  RadianceCacheSettings& cache = options.settings.radiance_cache;
+  if (options.settings.method == RenderMethod::kRadianceCache && cache.lateral_period_m == 0.0)
+    cache.lateral_period_m = kThickness;
   // The unscattered beam is scored by ratio tracking (T_direct); camera rays
   // must not see the sun's disc as well.
-  const Solver solver(scene, kWavelength, o, slab.albedo > 0.0, false);
+  const Solver solver(scene, kWavelength, options, slab.albedo > 0.0, false);
   const SpectralLerp lambda = solver.node().lerp();
 
   auto up_ray = [](Rng& rng, double z) {  // a cosine-distributed upward direction

@@ -5,7 +5,9 @@
 #include <cmath>
 #include <vector>
 
+#include "obscura/core/check.h"
 #include "obscura/core/error.h"
+#include "obscura/render/emission_absorption/emission_marcher.h"
 
 namespace obscura {
 namespace {
@@ -220,6 +222,31 @@ void integrate_emission_absorption(const Medium* medium, const Ray& ray, double 
     stats->segments += segments;
     stats->integrand_evals += integrand.evals;
   }
+}
+
+void integrate_emission_cells(const Medium* medium, const Ray& ray, double t_max,
+                              const SpectralNodes& nodes, double* radiance, double* transmittance,
+                              EmissionAbsorptionStats* stats) {
+  if (!medium) return;
+  OBSCURA_CHECK(nodes.size() <= static_cast<std::size_t>(kMaxSpectralNodes));
+  NoInScattering none;
+  EmissionMarcher<NoInScattering> marcher(nodes, none, radiance, transmittance);
+  medium->march_cells(ray, 0.0, t_max, {}, marcher);
+  if (stats) {
+    stats->segments += marcher.cells();
+    stats->integrand_evals += 2 * marcher.cells();
+  }
+}
+
+void integrate_emission(const Medium* medium, const Ray& ray, double t_max,
+                        const SpectralNodes& nodes, EmissionQuadrature quadrature,
+                        double relative_tolerance, double* radiance, double* transmittance,
+                        EmissionAbsorptionStats* stats) {
+  if (quadrature == EmissionQuadrature::kCell)
+    integrate_emission_cells(medium, ray, t_max, nodes, radiance, transmittance, stats);
+  else
+    integrate_emission_absorption(medium, ray, t_max, nodes, relative_tolerance, radiance,
+                                  transmittance, stats);
 }
 
 }  // namespace obscura

@@ -13,6 +13,7 @@
 #include "obscura/core/ray.h"
 #include "obscura/medium/medium.h"
 #include "obscura/render/spectral_nodes.h"
+#include "obscura/scene/render_settings.h"
 
 namespace obscura {
 
@@ -24,9 +25,24 @@ struct EmissionAbsorptionStats {
 // Adds to radiance[i] the medium's emitted spectral radiance seen along the
 // ray over [0, t_max] at node i (W m⁻² sr⁻¹ µm⁻¹), and multiplies
 // transmittance[i] by e^{−τ}. `medium` may be null (nothing happens).
+// The adaptive form ("emission_quadrature": "adaptive"): exact cubics,
+// emission to the relative tolerance (the validation mode).
 void integrate_emission_absorption(const Medium* medium, const Ray& ray, double t_max,
                                    const SpectralNodes& nodes, double relative_tolerance,
                                    double* radiance, double* transmittance,
                                    EmissionAbsorptionStats* stats = nullptr);
+
+// The same with the fixed-order cell quadrature ("emission_quadrature":
+// "cell", the default; cell_quadrature.h has its error bound): three points
+// per cell, τ exact, no recursion, a bounded cost per cell.
+void integrate_emission_cells(const Medium* medium, const Ray& ray, double t_max,
+                              const SpectralNodes& nodes, double* radiance, double* transmittance,
+                              EmissionAbsorptionStats* stats = nullptr);
+
+// The form `quadrature` names.
+void integrate_emission(const Medium* medium, const Ray& ray, double t_max,
+                        const SpectralNodes& nodes, EmissionQuadrature quadrature,
+                        double relative_tolerance, double* radiance, double* transmittance,
+                        EmissionAbsorptionStats* stats = nullptr);
 
 }  // namespace obscura

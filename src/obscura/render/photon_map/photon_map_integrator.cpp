@@ -139,9 +139,9 @@ void PhotonMapIntegrator::radiance_along(const CameraRay& camera, const Spectral
   std::fill_n(emission.begin(), n, 0.0);
   std::fill_n(transmittance.begin(), n, 1.0);
   std::fill_n(scattered.begin(), n, 0.0);
-  integrate_emission_absorption(scene_.medium.get(), camera.ray, camera.t_end(), nodes,
-                                scene_.settings.relative_tolerance, emission.data(),
-                                transmittance.data());
+  integrate_emission(scene_.medium.get(), camera.ray, camera.t_end(), nodes,
+                     scene_.settings.emission_quadrature, scene_.settings.relative_tolerance,
+                     emission.data(), transmittance.data());
   if (scene_.medium) march_in_scattering(camera, nodes, maps, rng, ws, scattered.data());
   background(camera, nodes, maps, rng, ws, depth, behind.data());
   for (int j = 0; j < n; ++j) out[j] = emission[j] + transmittance[j] * behind[j] + scattered[j];

@@ -89,8 +89,9 @@ enum Source { kSun = 0, kEnvironment = 1, kEmission = 2 };
 
 struct Launch {
   Ray ray;
-  double power = 0;        // W µm⁻¹
-  bool scattered = false;  // counts as scattered already (emission photons)
+  double power = 0;          // W µm⁻¹
+  bool scattered = false;    // counts as scattered already (emission photons)
+  bool store_first = false;  // store its first scattering although it has not scattered yet
 };
 
 // A photon's journey after launch: free flights by delta tracking, stored at
@@ -114,7 +115,7 @@ void trace_photon(const Scene& scene, const SpectralNode& node, const SpectralLe
                    sigma_s = lambda(scratch.sigma_s.data());
       if (rng.uniform() * (sigma_a + sigma_s) >= sigma_s) return;  // absorbed
       const Vec3 x = ray.at(*t);
-      if (scattered || settings.store_first_scatter)
+      if (scattered || l.store_first || settings.store_first_scatter)
         stored.push_back(
             Photon{{static_cast<float>(x.x), static_cast<float>(x.y), static_cast<float>(x.z)},
                    {static_cast<float>(ray.direction.x), static_cast<float>(ray.direction.y),
@@ -139,13 +140,22 @@ void trace_photon(const Scene& scene, const SpectralNode& node, const SpectralLe
 // The three sources of one spectral node and how a photon leaves each.
 class PhotonSources {
  public:
-  PhotonSources(const Scene& scene, const SpectralNode& node)
+  PhotonSources(const Scene& scene, const SpectralNode& node, double lateral_period_m)
       : scene_(scene),
         node_(node),
         lambda_(node.lerp()),
         sphere_(photon_bounding_sphere(scene)),
         disc_area_(std::numbers::pi * sphere_.radius_m * sphere_.radius_m),
-        lattice_(*scene.medium, node) {}
+        lattice_(*scene.medium, node),
+        period_(lateral_period_m) {
+    if (period_ > 0.0) {
+      if (!scene.surfaces.empty())
+        throw Error("photon tracing: a laterally periodic slab has no surfaces");
+      const BBox3 b = scene.medium->bounds();
+      const double lateral = b.extent().x * b.extent().y;
+      emission_share_ = lateral > 0 ? period_ * period_ / lateral : 0.0;
+    }
+  }
 
   // The powers used to share the photons out: the sun's beam through the
   // disc, the environment by kEnvironmentPilot pilot launches, the emission
@@ -161,7 +171,10 @@ class PhotonSources {
       sum += environment(rng, scratch).power;
     }
     est.environment_w_um = sum / kEnvironmentPilot;
-    est.emission_w_um = lattice_.estimated_power();
+    est.emission_w_um = lattice_.estimated_power() * emission_share_;
+    if (period_ > 0.0 && scene_.sun.enabled)  // through the P × P square of the top face
+      est.sun_w_um =
+          scene_.sun.irradiance(node_.wavelength_um) * scene_.sun.direction().z * period_ * period_;
     return est;
   }
 
@@ -172,6 +185,7 @@ class PhotonSources {
   // (e.g. below the ground), since the part of the line before the shading
   // surface can still cross the cloud.
   Launch sun(Rng& rng, long long n_sun) const {
+    if (period_ > 0.0) return periodic_sun(rng, n_sun);
     Launch l;
     const Vec3 d = -sample_sun_direction(scene_.sun, rng);
     const Vec3 p = point_on_disc(sphere_.center, d, sphere_.radius_m, rng);
@@ -184,6 +198,7 @@ class PhotonSources {
   // direction uniform over the sphere, starting behind the disc on the first
   // surface or at the sky.
   Launch environment(Rng& rng, MediumPoint& scratch) const {
+    if (period_ > 0.0) return periodic_environment(rng);
     const Vec3 d = sample_uniform_sphere(rng.uniform(), rng.uniform());
     const Vec3 p = point_on_disc(sphere_.center, d, sphere_.radius_m, rng);
     Launch l;
@@ -213,18 +228,54 @@ class PhotonSources {
     const double f =
         kFourPi * lambda_(scratch.sigma_a.data()) * node_.planck(scratch.temperature_k);
     l.power = f / (pdf * n_em);
+    if (period_ > 0.0) l.power *= emission_share_;
     l.ray = Ray{x, sample_uniform_sphere(rng.uniform(), rng.uniform())};
     l.scattered = true;
     return l;
   }
 
  private:
+  // A point uniform on the period square at height z.
+  Vec3 on_period_square(Rng& rng, double z) const {
+    const double x = rng.uniform() * period_, y = rng.uniform() * period_;
+    return {x, y, z};
+  }
+
+  // Periodic slab: sun photons through the P × P square of the top face; the
+  // power through it is E cos θ_sun P² (cos of the drawn direction).
+  Launch periodic_sun(Rng& rng, long long n_sun) const {
+    Launch l;
+    const Vec3 d = -sample_sun_direction(scene_.sun, rng);
+    const double top = scene_.medium->bounds().hi.z;
+    l.power = scene_.sun.irradiance(node_.wavelength_um) * -d.z * period_ * period_ / n_sun;
+    l.ray = Ray{on_period_square(rng, top), d};
+    return l;
+  }
+
+  // Periodic slab: sky photons through the top or the bottom face (each with
+  // probability ½), cosine-distributed into the slab: the power through a
+  // face is ∫ L |cos θ| dω P², which a cosine-distributed direction
+  // estimates as π L(−d) P² (÷ N_env by the caller, × 2 for the face choice).
+  Launch periodic_environment(Rng& rng) const {
+    const bool from_top = rng.uniform() < 0.5;
+    const BBox3 b = scene_.medium->bounds();
+    Vec3 d = sample_cosine_hemisphere(rng.uniform(), rng.uniform());
+    if (from_top) d.z = -d.z;
+    Launch l;
+    l.ray = Ray{on_period_square(rng, from_top ? b.hi.z : b.lo.z), d};
+    l.power =
+        2.0 * std::numbers::pi * scene_.sky.radiance(-d, node_.wavelength_um) * period_ * period_;
+    return l;
+  }
+
   const Scene& scene_;
   const SpectralNode& node_;
   SpectralLerp lambda_;
   BoundingSphere sphere_;
   double disc_area_;
   EmissionLattice lattice_;
+  double period_ = 0.0;
+  double emission_share_ = 1.0;  // of the emission lattice's power the photons carry
 };
 
 }  // namespace
@@ -239,7 +290,7 @@ TracedPhotons trace_photons(const Scene& scene, const SpectralNode& node, std::u
                             const PhotonTracingSettings& settings) {
   TracedPhotons out;
   if (!scene.medium || settings.photons <= 0) return out;
-  const PhotonSources sources(scene, node);
+  const PhotonSources sources(scene, node, settings.lateral_period_m);
   const SpectralLerp lambda = node.lerp();
 
   // Share the photons out by power.
@@ -273,6 +324,7 @@ TracedPhotons trace_photons(const Scene& scene, const SpectralNode& node, std::u
         source = kEnvironment;
         l = sources.environment(rng, scratch);
         l.power /= n_env;
+        l.store_first = settings.store_first_environment_scatter;
       } else {
         if (out.launched_count[kEmission] == 0) break;
         source = kEmission;

@@ -44,6 +44,17 @@ namespace obscura {
 struct PhotonTracingSettings {
   long long photons = 200000;  // launched per spectral node, all sources together
   bool store_first_scatter = false;
+  // Store environment photons from their first scattering on even when
+  // store_first_scatter is false: only the sun's single scattering is
+  // computed apart (the radiance cache).
+  bool store_first_environment_scatter = false;
+  // > 0: the medium is a laterally infinite, laterally homogeneous slab with
+  // no surfaces, and photons represent one period P × P of it: sun photons
+  // enter through a P × P square of its top face, environment photons
+  // through that square of its top or bottom face (cosine-distributed),
+  // emission photons carry the share P²/(the box's lateral area) of their
+  // power. Positions are stored unwrapped; the user wraps them (m).
+  double lateral_period_m = 0.0;
   std::uint64_t seed = 1;
   int threads = 0;
   int max_scatterings = 10000;  // safety net; roulette ends photons long before

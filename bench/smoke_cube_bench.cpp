@@ -1,0 +1,180 @@
+// Time to 2 % error on the homogeneous smoke cube of the radiance-cache issue
+// (docs/performance.md, "The smoke cube"): a cube of 2 m side, σa 0.2 and
+// σs 1.8 /m, g 0.5, lit by a sun of 1° angular diameter 40° from the zenith
+// under a black sky, seen from 6 m (1 m above its centre, looking at it) by a
+// 45° pinhole camera at 256², in one narrow visible band (0.549–0.551 µm).
+//
+// The error: the image averaged over 8×8-pixel blocks, the blocks where the
+// reference is above 1 % of its largest block kept, the RMS of the relative
+// difference. The reference is a path-traced image at --reference-spp (its
+// own error is printed: the block mean's standard error, RMS over the kept
+// blocks); each method is then run at growing effort (spp for the path
+// tracer, photons for the photon map and the radiance cache) until the error
+// is below --target, printing time and error at each step. Usage:
+//   bench_smoke_cube [--reference-spp 4096] [--target 0.02] [--threads N]
+//                    [--size 256] [--methods path-tracer,photonmap,radiance-cache]
+// Nothing here is asserted.
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "bench_timer.h"
+#include "obscura/core/parallel.h"
+#include "obscura/medium/homogeneous_medium.h"
+#include "obscura/render/renderer.h"
+
+using namespace obscura;
+
+namespace {
+
+Scene smoke_cube(int size) {
+  Scene scene;
+  scene.medium = std::make_shared<HomogeneousMedium>(
+      BBox3({-1, -1, -1}, {1, 1, 1}), std::vector<double>{0.5, 0.6}, std::vector<double>{0.2, 0.2},
+      std::vector<double>{1.8, 1.8}, std::vector<double>{0.5, 0.5}, 0.0);
+  scene.sky = Sky::blackbody(0.0, false);
+  scene.sun.enabled = true;
+  scene.sun.elevation_deg = 50.0;  // 40° from the zenith
+  scene.sun.azimuth_deg = 30.0;
+  scene.sun.angular_diameter_deg = 1.0;
+  Sensor sensor;
+  sensor.name = "vis";
+  sensor.camera = PinholeCamera({0, -6, 1}, {0, 0, 0}, {0, 0, 1}, 45.0, size, size);
+  sensor.bands = {Band::flat("narrow", 0.549, 0.551)};
+  scene.sensors.push_back(sensor);
+  scene.settings.spectral_nodes_per_band = 1;
+  scene.settings.camera_sees_sun = false;
+  return scene;
+}
+
+struct Blocks {
+  std::vector<double> mean, stderr_mean;
+};
+
+Blocks block_means(const SensorImage& img, int size) {
+  const int nb = size / 8;
+  Blocks b;
+  b.mean.assign(nb * nb, 0.0);
+  b.stderr_mean.assign(nb * nb, 0.0);
+  const auto& band = img.bands[0];
+  for (int y = 0; y < nb * 8; ++y)
+    for (int x = 0; x < nb * 8; ++x) {
+      const std::size_t p = static_cast<std::size_t>(y) * size + x, k = (y / 8) * nb + x / 8;
+      b.mean[k] += band.radiance[p] / 64.0;
+      if (!band.radiance_stderr.empty())  // deterministic methods have none
+        b.stderr_mean[k] += band.radiance_stderr[p] * band.radiance_stderr[p] / (64.0 * 64.0);
+    }
+  for (double& s : b.stderr_mean) s = std::sqrt(s);
+  return b;
+}
+
+// RMS relative difference over blocks above 1 % of the reference's largest.
+double block_error(const Blocks& ref, const Blocks& b,
+                   const std::vector<double>* stderr_of = nullptr) {
+  double largest = 0;
+  for (const double m : ref.mean) largest = std::max(largest, m);
+  double sum = 0;
+  int n = 0;
+  for (std::size_t k = 0; k < ref.mean.size(); ++k) {
+    if (!(ref.mean[k] > 0.01 * largest)) continue;
+    const double d = stderr_of ? (*stderr_of)[k] / ref.mean[k] : b.mean[k] / ref.mean[k] - 1.0;
+    sum += d * d;
+    ++n;
+  }
+  return std::sqrt(sum / n);
+}
+
+struct Timed {
+  double seconds;
+  Blocks blocks;
+};
+
+Timed render_timed(Scene& scene) {
+  const auto t0 = bench::Clock::now();
+  const SensorImage img = render_sensor(scene, scene.sensors[0]);
+  return {bench::seconds_since(t0), block_means(img, scene.sensors[0].camera.width())};
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  int reference_spp = 4096, threads = 0, size = 256;
+  double target = 0.02;
+  std::string methods = "path-tracer,photonmap,radiance-cache";
+  for (int i = 1; i + 1 < argc; i += 2) {
+    const std::string a = argv[i];
+    if (a == "--reference-spp")
+      reference_spp = std::atoi(argv[i + 1]);
+    else if (a == "--target")
+      target = std::atof(argv[i + 1]);
+    else if (a == "--threads")
+      threads = std::atoi(argv[i + 1]);
+    else if (a == "--size")
+      size = std::atoi(argv[i + 1]);
+    else if (a == "--methods")
+      methods = argv[i + 1];
+    else {
+      std::fprintf(stderr, "unknown option %s\n", a.c_str());
+      return 2;
+    }
+  }
+  const int cores = resolve_thread_count(threads);
+  std::printf("smoke cube, %d² px, %d threads; reference: path tracer at %d spp\n", size, cores,
+              reference_spp);
+  Scene scene = smoke_cube(size);
+  scene.settings.threads = threads;
+  scene.settings.method = RenderMethod::kPathTracer;
+  scene.settings.samples_per_pixel = reference_spp;
+  scene.settings.seed = 12345;
+  const Timed ref = render_timed(scene);
+  const double ref_error = block_error(ref.blocks, ref.blocks, &ref.blocks.stderr_mean);
+  std::printf("reference: %.1f s, its own block error (stderr, RMS relative) %.4f\n", ref.seconds,
+              ref_error);
+
+  std::stringstream list(methods);
+  std::string name;
+  while (std::getline(list, name, ',')) {
+    const auto method = parse_render_method(name);
+    if (!method) {
+      std::fprintf(stderr, "unknown method %s\n", name.c_str());
+      return 2;
+    }
+    scene.settings.method = *method;
+    scene.settings.seed = 1;
+    double first_under = -1;
+    for (int step = 0; step < 12; ++step) {
+      const long long effort = 1ll << step;
+      std::string what;
+      if (*method == RenderMethod::kPathTracer) {
+        scene.settings.samples_per_pixel = static_cast<int>(16 * effort);
+        what = std::to_string(scene.settings.samples_per_pixel) + " spp";
+      } else if (*method == RenderMethod::kPhotonMap) {
+        scene.settings.samples_per_pixel = 4;
+        scene.settings.photon_map.photons_per_node = 50000 * effort;
+        what = std::to_string(scene.settings.photon_map.photons_per_node) + " photons, 4 spp";
+      } else {
+        scene.settings.samples_per_pixel = 1;
+        scene.settings.radiance_cache.photons_per_node = 25000 * effort;
+        what = std::to_string(scene.settings.radiance_cache.photons_per_node) + " photons";
+      }
+      const Timed t = render_timed(scene);
+      const double error = block_error(ref.blocks, t.blocks);
+      std::printf("%-15s %-28s %8.2f s  error %.4f\n", name.c_str(), what.c_str(), t.seconds,
+                  error);
+      std::fflush(stdout);
+      if (error <= target) {
+        first_under = t.seconds;
+        break;
+      }
+      if (t.seconds > 120.0) break;
+    }
+    if (first_under >= 0)
+      std::printf("%-15s time to %.3g: %.2f s\n", name.c_str(), target, first_under);
+    else
+      std::printf("%-15s did not reach %.3g\n", name.c_str(), target);
+  }
+  return 0;
+}

@@ -1,0 +1,159 @@
+#include "obscura/render/radiance_cache/cache_lattice.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "obscura/core/error.h"
+
+namespace obscura {
+namespace {
+
+// Nodes along one axis: from (−½ h) to past length + ½ h.
+int nodes_along(double length_m, double h) {
+  return std::max(2, static_cast<int>(std::ceil(length_m / h - 1e-9)) + 2);
+}
+
+// Nodes along one axis from 0 to past length, one on each end.
+int nodes_on(double length_m, double h) {
+  return std::max(2, static_cast<int>(std::ceil(length_m / h - 1e-9)) + 1);
+}
+
+int wrap(int i, int n) {
+  const int r = i % n;
+  return r < 0 ? r + n : r;
+}
+
+}  // namespace
+
+CacheLattice::CacheLattice(const Medium& medium, double spacing_m, double period_m,
+                           std::size_t max_nodes) {
+  const BBox3 b = medium.bounds();
+  const std::optional<GridFrame> frame = medium.grid_frame();
+  Vec3 lengths = b.extent();
+  Vec3 corner = b.lo;
+  if (period_m > 0.0) {
+    periodic_ = true;
+    h_ = spacing_m > 0 ? spacing_m : lengths.z / 32.0;
+    const int per = std::max(4, static_cast<int>(std::lround(period_m / h_)));
+    h_ = period_m / per;
+    // Nodes on the slab's faces: its σs steps there, at a node, where the
+    // splats' normalisation (two-point Gauss per lattice interval) is exact.
+    origin_ = Vec3(0.0, 0.0, b.lo.z);
+    dims_ = {per, per, nodes_on(lengths.z, h_)};
+  } else {
+    if (frame) {
+      rotation_ = frame->placement.rotation;
+      corner = frame->placement.origin_m;
+      const double v = frame->placement.voxel_size_m;
+      lengths = Vec3(frame->dims.nx * v, frame->dims.ny * v, frame->dims.nz * v);
+      h_ = spacing_m > 0 ? spacing_m : v;
+      // Node 1 at ½ h inside the minimum corner: at a grid's own voxel size,
+      // the voxel centres.
+      origin_ = corner + rotation_ * Vec3(-0.5 * h_, -0.5 * h_, -0.5 * h_);
+      dims_ = {nodes_along(lengths.x, h_), nodes_along(lengths.y, h_), nodes_along(lengths.z, h_)};
+    } else {
+      // Other media (boxes): nodes on the box's minimum faces, and on the
+      // others where the extent is a whole number of spacings (a cube).
+      h_ = spacing_m > 0 ? spacing_m : std::max({lengths.x, lengths.y, lengths.z}) / 32.0;
+      origin_ = corner;
+      dims_ = {nodes_on(lengths.x, h_), nodes_on(lengths.y, h_), nodes_on(lengths.z, h_)};
+    }
+  }
+  if (!(h_ > 0.0 && std::isfinite(h_)))
+    throw InputError("", "render/radiance_cache/voxel_m",
+                     "the medium has no extent to lay a lattice over");
+  rotation_t_ = rotation_.transposed();
+  const double nodes = static_cast<double>(dims_[0]) * dims_[1] * dims_[2];
+  if (nodes > static_cast<double>(max_nodes))
+    throw InputError("", "render/radiance_cache/voxel_m",
+                     fmt::format("a lattice at {:.4g} m would have {:.3g} nodes (at most {:.3g}): "
+                                 "give a larger voxel_m",
+                                 h_, nodes, static_cast<double>(max_nodes)));
+  allocate_blocks(medium);
+}
+
+void CacheLattice::allocate_blocks(const Medium& medium) {
+  for (int a = 0; a < 3; ++a) block_dims_[a] = (dims_[a] + kBlock - 1) / kBlock;
+  block_index_.assign(static_cast<std::size_t>(block_dims_[0]) * block_dims_[1] * block_dims_[2],
+                      -1);
+  for (int bz = 0; bz < block_dims_[2]; ++bz)
+    for (int by = 0; by < block_dims_[1]; ++by)
+      for (int bx = 0; bx < block_dims_[0]; ++bx) {
+        // The block's nodes and one more each side (a node is needed wherever
+        // a neighbouring cell holds medium), as a world box.
+        const std::array<int, 3> b = {bx, by, bz};
+        BBox3 box;
+        for (int c = 0; c < 8; ++c) {
+          Vec3 node;
+          for (int a = 0; a < 3; ++a)
+            node[a] = (c >> a & 1) ? std::min(b[a] * kBlock + kBlock, dims_[a]) : b[a] * kBlock - 1;
+          box.expand(origin_ + rotation_ * (node * h_));
+        }
+        if (!periodic_ && !medium.may_be_nonzero(box)) continue;
+        block_index_[static_cast<std::size_t>(bx) +
+                     static_cast<std::size_t>(block_dims_[0]) *
+                         (static_cast<std::size_t>(by) +
+                          static_cast<std::size_t>(block_dims_[1]) * bz)] =
+            static_cast<std::int32_t>(blocks_.size());
+        blocks_.push_back(b);
+      }
+}
+
+std::size_t CacheLattice::slot_of(int i, int j, int k) const {
+  if (periodic_) {
+    i = wrap(i, dims_[0]);
+    j = wrap(j, dims_[1]);
+  }
+  if (i < 0 || j < 0 || k < 0 || i >= dims_[0] || j >= dims_[1] || k >= dims_[2]) return kNoSlot;
+  const std::size_t block = static_cast<std::size_t>(i / kBlock) +
+                            static_cast<std::size_t>(block_dims_[0]) *
+                                (static_cast<std::size_t>(j / kBlock) +
+                                 static_cast<std::size_t>(block_dims_[1]) * (k / kBlock));
+  const std::int32_t b = block_index_[block];
+  if (b < 0) return kNoSlot;
+  return static_cast<std::size_t>(b) * kBlockNodes + (i % kBlock) +
+         kBlock * ((j % kBlock) + kBlock * (k % kBlock));
+}
+
+Vec3 CacheLattice::slot_position(std::size_t slot) const {
+  const std::array<int, 3>& b = blocks_[slot / kBlockNodes];
+  const int local = static_cast<int>(slot % kBlockNodes);
+  const Vec3 node(b[0] * kBlock + local % kBlock, b[1] * kBlock + (local / kBlock) % kBlock,
+                  b[2] * kBlock + local / (kBlock * kBlock));
+  return origin_ + rotation_ * (node * h_);
+}
+
+bool CacheLattice::slot_inside(std::size_t slot) const {
+  const std::array<int, 3>& b = blocks_[slot / kBlockNodes];
+  const int local = static_cast<int>(slot % kBlockNodes);
+  return b[0] * kBlock + local % kBlock < dims_[0] &&
+         b[1] * kBlock + (local / kBlock) % kBlock < dims_[1] &&
+         b[2] * kBlock + local / (kBlock * kBlock) < dims_[2];
+}
+
+bool CacheLattice::corners(const Vec3& p, std::array<std::size_t, 8>& slot,
+                           std::array<double, 8>& w) const {
+  const Vec3 u = to_lattice(p);
+  std::array<int, 3> i0;
+  std::array<double, 3> f;
+  for (int a = 0; a < 3; ++a) {
+    const double fl = std::floor(u[a]);
+    i0[a] = static_cast<int>(fl);
+    f[a] = u[a] - fl;
+    const bool wraps = periodic_ && a < 2;
+    if (!wraps && (u[a] < 0.0 || u[a] > dims_[a] - 1)) return false;
+    if (!wraps && i0[a] == dims_[a] - 1) {  // on the last node
+      i0[a] -= 1;
+      f[a] = 1.0;
+    }
+  }
+  for (int c = 0; c < 8; ++c) {
+    slot[c] = slot_of(i0[0] + (c & 1), i0[1] + (c >> 1 & 1), i0[2] + (c >> 2 & 1));
+    w[c] = ((c & 1) ? f[0] : 1 - f[0]) * ((c & 2) ? f[1] : 1 - f[1]) * ((c & 4) ? f[2] : 1 - f[2]);
+  }
+  return true;
+}
+
+}  // namespace obscura

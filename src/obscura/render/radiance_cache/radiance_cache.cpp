@@ -1,0 +1,263 @@
+#include "obscura/render/radiance_cache/radiance_cache.h"
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <optional>
+
+#include "obscura/core/error.h"
+#include "obscura/core/parallel.h"
+#include "obscura/render/photon_map/photon_tracing.h"
+
+namespace obscura {
+namespace {
+
+// Lattices up to this many nodes are laid out (only occupied blocks are stored).
+constexpr double kMaxLatticeNodes = 4e9;
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// The optical depth along a ray per medium sample, by Simpson's rule on each
+// cell's three points: exact, as trilinear σt is a cubic inside a cell.
+class OpticalDepth final : public MarchVisitor {
+ public:
+  explicit OpticalDepth(double* tau) : tau_(tau) {}
+  bool visit(const MarchCell& cell) override {
+    const double h = cell.t_end - cell.t_begin;
+    for (int c = 0; c < cell.component_count; ++c)
+      for (int k = 0; k < cell.spectral_count; ++k) {
+        double sum = 0;
+        for (int p = 0; p < 3; ++p)
+          sum += (p == 1 ? 4.0 : 1.0) * (cell.point[p][c].sigma_a[k] + cell.point[p][c].sigma_s[k]);
+        tau_[k] += h / 6.0 * sum;
+      }
+    return true;
+  }
+
+ private:
+  double* tau_;
+};
+
+// ∫ (tent(t/r)/r) tent(t − k) dt: the splatting kernel against the lattice's
+// linear interpolation, one axis, at node offset k (|k| ≤ r).
+double kernel_overlap(int r, int k) {
+  constexpr int kSteps = 4096;
+  double sum = 0.0;
+  const double a = -r, b = r, dt = (b - a) / kSteps;
+  for (int i = 0; i < kSteps; ++i) {
+    const double t = a + (i + 0.5) * dt;
+    sum += std::max(0.0, 1.0 - std::abs(t) / r) / r * std::max(0.0, 1.0 - std::abs(t - k));
+  }
+  return sum * dt;
+}
+
+}  // namespace
+
+RadianceCache::RadianceCache(const Scene& scene, const std::vector<SpectralNode>& nodes)
+    : lattice_(*scene.medium, scene.settings.radiance_cache.voxel_m,
+               scene.settings.radiance_cache.lateral_period_m,
+               static_cast<std::size_t>(kMaxLatticeNodes)),
+      sh_degree_(scene.settings.radiance_cache.sh_degree),
+      sh_count_(sh_coefficient_count(sh_degree_)),
+      spectral_count_(static_cast<int>(scene.medium->wavelengths_um().size())),
+      has_sun_(scene.sun.enabled) {
+  const auto start = std::chrono::steady_clock::now();
+  const std::size_t slots = lattice_.slot_count();
+  const double bytes =
+      static_cast<double>(slots) *
+      (sizeof(float) * (spectral_count_ + 1 + nodes.size() * sh_count_ + spectral_count_) +
+       sizeof(double) * sh_count_);
+  if (bytes > 0.8 * static_cast<double>(available_memory_bytes()))
+    throw InputError("", "render/radiance_cache/voxel_m",
+                     fmt::format("the cache would take {:.3g} GB ({} nodes at {:.4g} m), more "
+                                 "than this machine has free: give a larger voxel_m",
+                                 bytes / 1e9, slots, lattice_.spacing_m()));
+  const std::vector<float> kernel_sigma_s = kernel_scattering(scene);
+  const auto sun_start = std::chrono::steady_clock::now();
+  compute_sun(scene);
+  sun_seconds = seconds_since(sun_start);
+  radiance_.resize(nodes.size());
+  for (std::size_t u = 0; u < nodes.size(); ++u)
+    splat(scene, nodes[u], static_cast<int>(u), kernel_sigma_s);
+  seconds = seconds_since(start);
+}
+
+std::size_t RadianceCache::memory_bytes() const {
+  std::size_t n = sun_.size() * sizeof(float);
+  for (const auto& r : radiance_) n += r.size() * sizeof(float);
+  return n;
+}
+
+void RadianceCache::compute_sun(const Scene& scene) {
+  const std::size_t per_slot = static_cast<std::size_t>(spectral_count_) + 1;
+  sun_.assign(lattice_.slot_count() * per_slot, 0.0f);
+  if (!has_sun_) return;
+  const Vec3 to_sun = scene.sun.direction();
+  // A surface within one node diagonal does not shade a node: the node is
+  // then on or just under it (the ground beneath a cloud's lowest nodes),
+  // and its values serve the cells above.
+  const double near_m = std::sqrt(3.0) * lattice_.spacing_m();
+  parallel_for(lattice_.block_count(), scene.settings.threads, [&](std::size_t block) {
+    std::vector<double> tau(static_cast<std::size_t>(spectral_count_));
+    for (std::size_t slot = block * CacheLattice::kBlockNodes;
+         slot < (block + 1) * CacheLattice::kBlockNodes; ++slot) {
+      if (!lattice_.slot_inside(slot)) continue;
+      const Ray ray{lattice_.slot_position(slot), to_sun};
+      SurfaceHit hit;
+      const bool shaded = intersect_surfaces(scene.surfaces, ray, near_m,
+                                             std::numeric_limits<double>::infinity(), hit);
+      std::fill(tau.begin(), tau.end(), 0.0);
+      OpticalDepth depth(tau.data());
+      scene.medium->march_cells(ray, 0.0, std::numeric_limits<double>::infinity(), {}, depth);
+      float* out = sun_.data() + slot * per_slot;
+      for (int k = 0; k < spectral_count_; ++k) out[k] = static_cast<float>(tau[k]);
+      out[spectral_count_] = shaded ? 0.0f : 1.0f;
+    }
+  });
+}
+
+std::vector<float> RadianceCache::kernel_scattering(const Scene& scene) const {
+  const Medium& medium = *scene.medium;
+  const std::size_t slots = lattice_.slot_count();
+  const int ns = spectral_count_;
+  const int r = scene.settings.radiance_cache.kernel_radius_nodes;
+  std::vector<float> out(slots * static_cast<std::size_t>(ns), 0.0f);
+  // The medium is trilinear between the lattice's nodes when they are its
+  // own voxel centres: then ∫ K σs dV = Σ_m σs(x_m) W(m − n) exactly.
+  const std::optional<GridFrame> frame = medium.grid_frame();
+  const bool aligned = frame && frame->trilinear && !lattice_.periodic() &&
+                       std::abs(frame->placement.voxel_size_m - lattice_.spacing_m()) <=
+                           1e-12 * lattice_.spacing_m();
+  std::vector<float> at_nodes;
+  if (aligned) {
+    at_nodes.assign(slots * static_cast<std::size_t>(ns), 0.0f);
+    parallel_for(lattice_.block_count(), scene.settings.threads, [&](std::size_t block) {
+      MediumPoint point;
+      for (std::size_t slot = block * CacheLattice::kBlockNodes;
+           slot < (block + 1) * CacheLattice::kBlockNodes; ++slot) {
+        if (!lattice_.slot_inside(slot)) continue;
+        medium.coefficients_at(lattice_.slot_position(slot), point);
+        for (int k = 0; k < ns; ++k) at_nodes[slot * ns + k] = static_cast<float>(point.sigma_s[k]);
+      }
+    });
+  }
+  std::vector<double> overlap(2 * r + 1);
+  for (int k = -r; k <= r; ++k) overlap[k + r] = kernel_overlap(r, k);
+  // Otherwise (steps at a box's faces, clouds on other grids) by two-point
+  // Gauss–Legendre per lattice interval and axis over the kernel's support:
+  // exact for σs trilinear within each interval, and converging as the
+  // spacing shrinks where it is not.
+  std::vector<double> gauss_u, gauss_w;
+  for (int i = -r; i < r; ++i)
+    for (const double x : {-1.0 / std::sqrt(3.0), 1.0 / std::sqrt(3.0)}) {
+      const double u = i + 0.5 + 0.5 * x;
+      gauss_u.push_back(u);
+      gauss_w.push_back(0.5 * std::max(0.0, 1.0 - std::abs(u) / r) / r);
+    }
+  parallel_for(lattice_.block_count(), scene.settings.threads, [&](std::size_t block) {
+    MediumPoint point;
+    std::vector<double> sum(static_cast<std::size_t>(ns));
+    for (std::size_t slot = block * CacheLattice::kBlockNodes;
+         slot < (block + 1) * CacheLattice::kBlockNodes; ++slot) {
+      if (!lattice_.slot_inside(slot)) continue;
+      const Vec3 node = lattice_.to_lattice(lattice_.slot_position(slot));
+      const int ni = static_cast<int>(std::lround(node.x)),
+                nj = static_cast<int>(std::lround(node.y)),
+                nk = static_cast<int>(std::lround(node.z));
+      std::fill(sum.begin(), sum.end(), 0.0);
+      if (aligned) {
+        for (int dk = -r; dk <= r; ++dk)
+          for (int dj = -r; dj <= r; ++dj)
+            for (int di = -r; di <= r; ++di) {
+              const std::size_t m = lattice_.slot_of(ni + di, nj + dj, nk + dk);
+              if (m == CacheLattice::kNoSlot) continue;
+              const double w = overlap[di + r] * overlap[dj + r] * overlap[dk + r];
+              for (int k = 0; k < ns; ++k) sum[k] += w * at_nodes[m * ns + k];
+            }
+      } else {
+        const Vec3 p0 = lattice_.slot_position(slot);
+        const double h = lattice_.spacing_m();
+        for (std::size_t c = 0; c < gauss_u.size(); ++c)
+          for (std::size_t b = 0; b < gauss_u.size(); ++b)
+            for (std::size_t a = 0; a < gauss_u.size(); ++a) {
+              const Vec3 offset(gauss_u[a] * h, gauss_u[b] * h, gauss_u[c] * h);
+              medium.coefficients_at(p0 + lattice_.rotation() * offset, point);
+              const double w = gauss_w[a] * gauss_w[b] * gauss_w[c];
+              for (int k = 0; k < ns; ++k) sum[k] += w * point.sigma_s[k];
+            }
+      }
+      for (int k = 0; k < ns; ++k) out[slot * ns + k] = static_cast<float>(sum[k]);
+    }
+  });
+  return out;
+}
+
+void RadianceCache::splat(const Scene& scene, const SpectralNode& node, int index,
+                          const std::vector<float>& kernel_sigma_s) {
+  const RadianceCacheSettings& settings = scene.settings.radiance_cache;
+  auto t0 = std::chrono::steady_clock::now();
+  PhotonTracingSettings tracing;
+  tracing.photons = settings.photons_per_node;
+  tracing.store_first_environment_scatter = true;  // only the sun's single scattering is apart
+  tracing.seed = scene.settings.seed;
+  tracing.threads = scene.settings.threads;
+  tracing.lateral_period_m = lattice_.periodic() ? settings.lateral_period_m : 0.0;
+  // One block of 2^40 photon streams per spectral node, above the pixels'.
+  const std::uint64_t base = (static_cast<std::uint64_t>(index) + 1) << 40;
+  TracedPhotons traced = trace_photons(scene, node, base, tracing);
+  photons_stored_ += traced.photons.size();
+  photon_seconds += seconds_since(t0);
+
+  t0 = std::chrono::steady_clock::now();
+  const std::size_t slots = lattice_.slot_count();
+  std::vector<double> sum(slots * sh_count_, 0.0);
+  const int r = settings.kernel_radius_nodes;
+  const double h = lattice_.spacing_m();
+  const double volume = std::pow(r * h, 3);  // the kernel's normalisation (r h)³
+  std::array<double, kMaxShCoefficients> y;
+  // Photons in their stored order: the sums do not depend on the thread count.
+  for (const Photon& p : traced.photons) {
+    const Vec3 u = lattice_.to_lattice(p.position());
+    spherical_harmonics(p.dir(), y);
+    const int i0 = static_cast<int>(std::floor(u.x)) - r + 1,
+              j0 = static_cast<int>(std::floor(u.y)) - r + 1,
+              k0 = static_cast<int>(std::floor(u.z)) - r + 1;
+    for (int k = k0; k < k0 + 2 * r; ++k) {
+      const double wz = std::max(0.0, 1.0 - std::abs(u.z - k) / r);
+      for (int j = j0; j < j0 + 2 * r; ++j) {
+        const double wyz = wz * std::max(0.0, 1.0 - std::abs(u.y - j) / r);
+        for (int i = i0; i < i0 + 2 * r; ++i) {
+          const double w = wyz * std::max(0.0, 1.0 - std::abs(u.x - i) / r);
+          const std::size_t slot = lattice_.slot_of(i, j, k);
+          if (w == 0.0 || slot == CacheLattice::kNoSlot) continue;
+          double* s = sum.data() + slot * sh_count_;
+          const double weight = w * p.power / volume;
+          for (int c = 0; c < sh_count_; ++c) s[c] += weight * y[c];
+        }
+      }
+    }
+  }
+  // Divide by ∫ K σs dV (kernel_scattering), at the node's wavelength.
+  const SpectralLerp lerp = node.lerp();
+  std::vector<float>& out = radiance_[static_cast<std::size_t>(index)];
+  out.assign(slots * sh_count_, 0.0f);
+  parallel_for(lattice_.block_count(), scene.settings.threads, [&](std::size_t block) {
+    std::vector<double> samples(static_cast<std::size_t>(spectral_count_));
+    for (std::size_t slot = block * CacheLattice::kBlockNodes;
+         slot < (block + 1) * CacheLattice::kBlockNodes; ++slot) {
+      for (int k = 0; k < spectral_count_; ++k)
+        samples[k] = kernel_sigma_s[slot * spectral_count_ + k];
+      const double norm = lerp(samples.data());
+      if (!(norm > 0.0)) continue;
+      for (int c = 0; c < sh_count_; ++c)
+        out[slot * sh_count_ + c] = static_cast<float>(sum[slot * sh_count_ + c] / norm);
+    }
+  });
+  splat_seconds += seconds_since(t0);
+}
+
+}  // namespace obscura

@@ -1,0 +1,42 @@
+#pragma once
+// "method": "radiance-cache": per frame, one RadianceCache for every distinct
+// spectral node of every sensor's bands; then each camera ray is a
+// deterministic march (render/emission_absorption/emission_marcher.h): in
+// every medium cell the emission σa B(T) and the scattered light σs J are
+// integrated together with the cell quadrature and the exact transmittance,
+//   J(x, ω) = E_sun p_HG(ω_sun·ω) e^{−τ_sun(x)} + Σ_l g^l Σ_m Y_lm(ω) c_lm(x),
+// τ_sun and c_lm trilinear from the cache: no shadow ray, no environment ray,
+// no nearest-neighbour query. Behind the medium: render/background.h, as for
+// emission–absorption, so that a frame without a cloud is the
+// emission–absorption image exactly.
+#include <memory>
+#include <vector>
+
+#include "obscura/render/integrator.h"
+#include "obscura/render/radiance_cache/radiance_cache.h"
+
+namespace obscura {
+
+class RadianceCacheIntegrator final : public Integrator {
+ public:
+  RadianceCacheIntegrator(const Scene& scene, const FrameSpectra& spectra);
+
+  RenderMethod method() const override { return RenderMethod::kRadianceCache; }
+  std::unique_ptr<RayWorkspace> make_workspace() const override;
+  void band_radiance(const CameraRay& ray, int sensor, int band, Rng& rng, RayWorkspace& workspace,
+                     double* radiance, double* transmittance) const override;
+  // The frame's cache, reported with its first sensor.
+  PreparationStats preparation(int sensor) const override;
+
+  const RadianceCache* cache() const { return cache_.get(); }
+
+ private:
+  const Scene& scene_;
+  const FrameSpectra& spectra_;
+  std::vector<SpectralNode> distinct_;                     // the cache's nodes
+  std::vector<std::vector<std::vector<int>>> node_index_;  // [sensor][band][node] → distinct
+  std::unique_ptr<RadianceCache> cache_;                   // null without a medium
+  PreparationStats preparation_;
+};
+
+}  // namespace obscura

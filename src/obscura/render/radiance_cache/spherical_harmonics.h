@@ -1,0 +1,70 @@
+#pragma once
+// Real spherical harmonics up to degree 3, orthonormal on the sphere
+// (∫ Y_lm Y_l'm' dω = δ_ll' δ_mm'), in the usual order
+// (l, m) = (0,0), (1,−1), (1,0), (1,1), (2,−2), …, index l² + l + m. The
+// radiance cache stores the incident radiance at a point as
+// c_lm = ∫ Y_lm(ω) L_in(ω) dω (ω the direction of propagation), and the
+// Henyey–Greenstein phase function, whose Legendre coefficients are g^l
+// (p(μ) = Σ_l (2l + 1)/(4π) g^l P_l(μ)), convolves it exactly band by band:
+// by the addition theorem P_l(ω·ω') = 4π/(2l + 1) Σ_m Y_lm(ω) Y_lm(ω'),
+//   ∫ p(ω'·ω) L_in(ω') dω' = Σ_l g^l Σ_m Y_lm(ω) c_lm
+// (docs/physics.md, "The radiance cache").
+#include <array>
+
+#include "obscura/core/vec3.h"
+
+namespace obscura {
+
+inline constexpr int kMaxShDegree = 3;
+inline constexpr int kMaxShCoefficients = (kMaxShDegree + 1) * (kMaxShDegree + 1);
+
+constexpr int sh_coefficient_count(int degree) { return (degree + 1) * (degree + 1); }
+
+// Y_lm(d) for l ≤ kMaxShDegree, d a unit vector (x, y, z), into y[l² + l + m].
+inline void spherical_harmonics(const Vec3& d, std::array<double, kMaxShCoefficients>& y) {
+  const double x = d.x, yy = d.y, z = d.z;
+  // Normalisation constants of the real harmonics (Sloan 2008, "Stupid
+  // Spherical Harmonics Tricks", appendix).
+  constexpr double k00 = 0.28209479177387814;  // 1/(2√π)
+  constexpr double k1 = 0.48860251190291992;   // √(3/(4π))
+  constexpr double k2a = 1.0925484305920792;   // √(15/(4π))
+  constexpr double k2b = 0.31539156525252005;  // √(5/(16π))
+  constexpr double k2c = 0.54627421529603959;  // √(15/(16π))
+  constexpr double k3a = 0.59004358992664352;  // √(35/(32π))
+  constexpr double k3b = 2.8906114426405538;   // √(105/(4π))
+  constexpr double k3c = 0.45704579946446572;  // √(21/(32π))
+  constexpr double k3d = 0.37317633259011546;  // √(7/(16π))
+  constexpr double k3e = 1.4453057213202769;   // √(105/(16π))
+  y[0] = k00;
+  y[1] = k1 * yy;
+  y[2] = k1 * z;
+  y[3] = k1 * x;
+  y[4] = k2a * x * yy;
+  y[5] = k2a * yy * z;
+  y[6] = k2b * (3 * z * z - 1);
+  y[7] = k2a * x * z;
+  y[8] = k2c * (x * x - yy * yy);
+  y[9] = k3a * yy * (3 * x * x - yy * yy);
+  y[10] = k3b * x * yy * z;
+  y[11] = k3c * yy * (5 * z * z - 1);
+  y[12] = k3d * z * (5 * z * z - 3);
+  y[13] = k3c * x * (5 * z * z - 1);
+  y[14] = k3e * z * (x * x - yy * yy);
+  y[15] = k3a * x * (x * x - 3 * yy * yy);
+}
+
+// ∫ p_HG(ω'·ω) L(ω') dω' from L's coefficients `c` (degree ≤ `degree`) and
+// the harmonics `y` of ω: Σ_l g^l Σ_m y_lm c_lm.
+inline double hg_convolved(const float* c, const std::array<double, kMaxShCoefficients>& y,
+                           double g, int degree) {
+  double result = 0.0, g_l = 1.0;
+  for (int l = 0; l <= degree; ++l) {
+    double band = 0.0;
+    for (int i = l * l; i < (l + 1) * (l + 1); ++i) band += y[i] * c[i];
+    result += g_l * band;
+    g_l *= g;
+  }
+  return result;
+}
+
+}  // namespace obscura

@@ -1,0 +1,103 @@
+// The radiance cache's lattice (render/radiance_cache/cache_lattice.h): where
+// its nodes are, how a point finds its eight, and which blocks exist.
+#include "obscura/render/radiance_cache/cache_lattice.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "medium/test_grids.h"
+#include "obscura/core/error.h"
+#include "obscura/medium/grid_medium.h"
+#include "obscura/medium/homogeneous_medium.h"
+
+namespace obscura {
+namespace {
+
+std::shared_ptr<HomogeneousMedium> box(const BBox3& b) {
+  return std::make_shared<HomogeneousMedium>(b, std::vector<double>{1.0}, std::vector<double>{0.1},
+                                             std::vector<double>{1.0}, std::vector<double>{0.0},
+                                             300.0);
+}
+
+TEST(CacheLattice, AtAGridsVoxelSizeItsNodesAreTheVoxelCentres) {
+  const Mat3 r = rotation_from_euler_deg({0, 0, 30});
+  auto grid = testing::random_grid({10, 9, 4}, 1, 3, r);
+  const GridMedium medium(grid);
+  const CacheLattice lattice(medium, 0.0, 0.0, 1u << 30);
+  EXPECT_DOUBLE_EQ(lattice.spacing_m(), 0.37);
+  EXPECT_EQ(lattice.dims()[0], 12);  // the voxels plus a rim node each side
+  EXPECT_EQ(lattice.dims()[2], 6);
+  const GridPlacement& p = grid->placement();
+  // Node (1, 1, 1) is the centre of voxel (0, 0, 0).
+  const Vec3 centre = p.origin_m + r * Vec3(0.5, 0.5, 0.5) * p.voxel_size_m;
+  const Vec3 u = lattice.to_lattice(centre);
+  EXPECT_NEAR(u.x, 1.0, 1e-12);
+  EXPECT_NEAR(u.y, 1.0, 1e-12);
+  EXPECT_NEAR(u.z, 1.0, 1e-12);
+}
+
+TEST(CacheLattice, CornerWeightsReproduceLinearFields) {
+  const auto medium = box(BBox3({0, 0, 0}, {2, 1, 1}));
+  const CacheLattice lattice(*medium, 0.25, 0.0, 1u << 30);
+  Rng rng(3, 0);
+  for (int i = 0; i < 200; ++i) {
+    const Vec3 p(2 * rng.uniform(), rng.uniform(), rng.uniform());
+    std::array<std::size_t, 8> slot;
+    std::array<double, 8> w;
+    ASSERT_TRUE(lattice.corners(p, slot, w));
+    double sum = 0, x = 0;
+    for (int c = 0; c < 8; ++c) {
+      ASSERT_NE(slot[c], CacheLattice::kNoSlot);
+      sum += w[c];
+      x += w[c] * lattice.slot_position(slot[c]).x;
+    }
+    EXPECT_NEAR(sum, 1.0, 1e-12);
+    EXPECT_NEAR(x, p.x, 1e-12);
+  }
+  std::array<std::size_t, 8> slot;
+  std::array<double, 8> w;
+  EXPECT_FALSE(lattice.corners(Vec3(2.3, 0.5, 0.5), slot, w));
+  EXPECT_TRUE(lattice.corners(Vec3(2.0, 1.0, 1.0), slot, w));  // the far corner
+}
+
+TEST(CacheLattice, PeriodicLatticeWrapsSideways) {
+  const auto slab = box(BBox3({-1e3, -1e3, 0}, {1e3, 1e3, 1}));
+  const CacheLattice lattice(*slab, 0.1, 1.0, 1u << 30);
+  EXPECT_TRUE(lattice.periodic());
+  EXPECT_EQ(lattice.dims()[0], 10);
+  EXPECT_EQ(lattice.slot_of(-1, 3, 2), lattice.slot_of(9, 3, 2));
+  EXPECT_EQ(lattice.slot_of(10, 13, 2), lattice.slot_of(0, 3, 2));
+  EXPECT_EQ(lattice.slot_of(0, 0, -1), CacheLattice::kNoSlot);  // not in z
+  std::array<std::size_t, 8> slot;
+  std::array<double, 8> w;
+  EXPECT_TRUE(lattice.corners(Vec3(57.31, -8.02, 0.5), slot, w));
+}
+
+TEST(CacheLattice, BlocksExistOnlyNearTheMedium) {
+  // A grid that is empty except one voxel in a corner: one block of 8³ nodes
+  // (and its neighbours reaching it) instead of all of them.
+  GridPlacement p;
+  p.voxel_size_m = 0.1;
+  auto grid = std::make_shared<VoxelGrid>(GridDims{64, 64, 64}, p, std::vector<double>{1.0});
+  grid->sigma_s(0)[0] = 1.0f;
+  const GridMedium medium(grid);
+  const CacheLattice lattice(medium, 0.0, 0.0, 1u << 30);
+  EXPECT_LE(lattice.block_count(), 8u);
+  EXPECT_GE(lattice.block_count(), 1u);
+  EXPECT_NE(lattice.slot_of(1, 1, 1), CacheLattice::kNoSlot);
+  EXPECT_EQ(lattice.slot_of(40, 40, 40), CacheLattice::kNoSlot);
+}
+
+TEST(CacheLattice, RefusesMoreNodesThanItMayHold) {
+  const auto medium = box(BBox3({0, 0, 0}, {10, 10, 10}));
+  try {
+    const CacheLattice lattice(*medium, 0.01, 0.0, 1000000);
+    ADD_FAILURE() << "a 10⁹-node lattice was accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.field(), "render/radiance_cache/voxel_m");
+  }
+}
+
+}  // namespace
+}  // namespace obscura

@@ -1,0 +1,100 @@
+// The radiance-cache integrator on whole images: deterministic, independent
+// of the thread count, equal to emission–absorption where there is no cloud,
+// and (validation label) in agreement with the path tracer on a sunlit cloud.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+
+#include "medium/test_grids.h"
+#include "obscura/medium/grid_medium.h"
+#include "obscura/medium/homogeneous_medium.h"
+#include "support/render_helpers.h"
+
+namespace obscura {
+namespace {
+
+Scene sunlit_scene(RenderMethod method) {
+  Scene scene;
+  Sensor sensor;
+  sensor.name = "cam";
+  sensor.camera = PinholeCamera({0, -15, 3}, {0, 0, 2}, {0, 0, 1}, 40.0, 40, 24);
+  sensor.bands = {Band::preset("visible"), Band::preset("lwir")};
+  scene.sensors.push_back(sensor);
+  scene.surfaces.push_back(std::make_unique<GroundPlane>("ground", SurfaceMaterial{290, 0.7}, 0.0));
+  scene.surfaces.push_back(
+      std::make_unique<BoxSurface>("box", SurfaceMaterial{330, 0.9}, BBox3({-1, 3, 0}, {1, 5, 2})));
+  scene.sky = Sky::blackbody(240, true);
+  scene.sun.enabled = true;
+  scene.sun.elevation_deg = 35.0;
+  scene.sun.azimuth_deg = 120.0;
+  scene.settings.method = method;
+  scene.settings.samples_per_pixel = 1;
+  scene.settings.radiance_cache.photons_per_node = 20000;
+  return scene;
+}
+
+void expect_same_bits(const SensorImage& a, const SensorImage& b) {
+  ASSERT_EQ(a.bands.size(), b.bands.size());
+  for (std::size_t i = 0; i < a.bands.size(); ++i) {
+    const auto& x = a.bands[i];
+    const auto& y = b.bands[i];
+    ASSERT_EQ(x.radiance.size(), y.radiance.size());
+    EXPECT_EQ(0,
+              std::memcmp(x.radiance.data(), y.radiance.data(), x.radiance.size() * sizeof(float)))
+        << "band " << i;
+    EXPECT_EQ(0, std::memcmp(x.transmittance.data(), y.transmittance.data(),
+                             x.transmittance.size() * sizeof(float)))
+        << "band " << i;
+  }
+}
+
+TEST(RadianceCacheIntegrator, WithoutACloudItIsTheEmissionAbsorptionImage) {
+  Scene cache = sunlit_scene(RenderMethod::kRadianceCache);
+  Scene ea = sunlit_scene(RenderMethod::kEmissionAbsorption);
+  expect_same_bits(testing::render_first_sensor(cache, 2, 5),
+                   testing::render_first_sensor(ea, 2, 5));
+}
+
+TEST(RadianceCacheIntegrator, BitIdenticalWithOneAndTwoThreads) {
+  Scene scene = sunlit_scene(RenderMethod::kRadianceCache);
+  scene.medium = std::make_shared<GridMedium>(testing::random_grid({12, 10, 8}, 3, 17));
+  const SensorImage a = testing::render_first_sensor(scene, 1, 7);
+  const SensorImage b = testing::render_first_sensor(scene, 2, 7);
+  expect_same_bits(a, b);
+  // The cache's photons follow the seed.
+  const SensorImage c = testing::render_first_sensor(scene, 2, 8);
+  EXPECT_NE(0, std::memcmp(a.bands[0].radiance.data(), c.bands[0].radiance.data(),
+                           a.bands[0].radiance.size() * sizeof(float)));
+}
+
+TEST(EmissionAbsorptionBackground, ACloudShadesTheSunlitGround) {
+  // The ground seen from above under a high sun, with and without an
+  // absorbing sheet between it and the sun but outside the view (τ = 0.5,
+  // no scattering, 0 K: no light of its own): the reflected sun, nearly all
+  // of the visible ground radiance (the 240 K sky is nothing there), falls by
+  // e^{−0.5}, the exact shadow.
+  auto scene = [](bool sheet) {
+    Scene s = sunlit_scene(RenderMethod::kEmissionAbsorption);
+    s.surfaces.pop_back();
+    s.sun.elevation_deg = 90.0;
+    s.sensors[0].camera = PinholeCamera({0, 0, 5}, {0, 0, 0}, {0, 1, 0}, 10.0, 8, 8);
+    s.sensors[0].bands = {Band::preset("visible")};
+    if (sheet)
+      s.medium = std::make_shared<HomogeneousMedium>(
+          BBox3({-50, -50, 10}, {50, 50, 11}), std::vector<double>{0.3, 1.0},
+          std::vector<double>{0.5, 0.5}, std::vector<double>{0.0, 0.0},
+          std::vector<double>{0.0, 0.0}, 0.0);
+    return s;
+  };
+  Scene open = scene(false), shaded = scene(true);
+  const SensorImage a = testing::render_first_sensor(open, 1, 1);
+  const SensorImage b = testing::render_first_sensor(shaded, 1, 1);
+  for (std::size_t p = 0; p < a.bands[0].radiance.size(); ++p) {
+    EXPECT_GT(a.bands[0].radiance[p], 0.0f);
+    EXPECT_NEAR(b.bands[0].radiance[p] / a.bands[0].radiance[p], std::exp(-0.5), 1e-4);
+  }
+}
+
+}  // namespace
+}  // namespace obscura

@@ -1,0 +1,81 @@
+// The real spherical harmonics and the Henyey–Greenstein convolution of
+// render/radiance_cache/spherical_harmonics.h against numerical integrals
+// over the sphere.
+#include "obscura/render/radiance_cache/spherical_harmonics.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+#include <numbers>
+
+namespace obscura {
+namespace {
+
+// ∫ f(ω) dω by the midpoint rule in μ = cos θ and φ (n_mu × n_phi points).
+double over_sphere(const std::function<double(const Vec3&)>& f, int n_mu = 800, int n_phi = 400) {
+  double sum = 0.0;
+  for (int i = 0; i < n_mu; ++i) {
+    const double mu = -1.0 + (i + 0.5) * 2.0 / n_mu, s = std::sqrt(1 - mu * mu);
+    for (int j = 0; j < n_phi; ++j) {
+      const double phi = (j + 0.5) * 2.0 * std::numbers::pi / n_phi;
+      sum += f(Vec3(s * std::cos(phi), s * std::sin(phi), mu));
+    }
+  }
+  return sum * (2.0 / n_mu) * (2.0 * std::numbers::pi / n_phi);
+}
+
+TEST(SphericalHarmonics, AreOrthonormal) {
+  for (int a = 0; a < kMaxShCoefficients; ++a)
+    for (int b = a; b < kMaxShCoefficients; ++b) {
+      const double integral = over_sphere([&](const Vec3& d) {
+        std::array<double, kMaxShCoefficients> y;
+        spherical_harmonics(d, y);
+        return y[a] * y[b];
+      });
+      EXPECT_NEAR(integral, a == b ? 1.0 : 0.0, 1e-4) << "Y" << a << " Y" << b;
+    }
+}
+
+double hg(double g, double mu) {
+  return (1 - g * g) / (4 * std::numbers::pi * std::pow(1 + g * g - 2 * g * mu, 1.5));
+}
+
+TEST(SphericalHarmonics, HenyeyGreensteinConvolutionIsExactPerBand) {
+  // L of degree ≤ 3: ∫ p(ω'·ω) L(ω') dω' = Σ_l g^l Σ_m Y_lm(ω) c_lm exactly,
+  // as p's Legendre coefficients are g^l (the higher ones meet nothing in L).
+  std::array<float, kMaxShCoefficients> c;
+  for (int i = 0; i < kMaxShCoefficients; ++i)
+    c[i] = static_cast<float>(0.3 + 0.17 * i - 0.02 * i * i);
+  auto radiance = [&](const Vec3& d) {
+    std::array<double, kMaxShCoefficients> y;
+    spherical_harmonics(d, y);
+    double l = 0;
+    for (int i = 0; i < kMaxShCoefficients; ++i) l += c[i] * y[i];
+    return l;
+  };
+  for (const double g : {-0.5, 0.0, 0.4, 0.7})
+    for (const Vec3& w :
+         {Vec3(0, 0, 1), normalize(Vec3(0.3, -0.5, 0.8)), normalize(Vec3(-1, 0.2, -0.1))}) {
+      const double numeric =
+          over_sphere([&](const Vec3& d) { return hg(g, dot(d, w)) * radiance(d); }, 1600, 800);
+      std::array<double, kMaxShCoefficients> y;
+      spherical_harmonics(w, y);
+      EXPECT_NEAR(hg_convolved(c.data(), y, g, 3), numeric, 1e-4 * (1 + std::abs(numeric)))
+          << "g = " << g;
+    }
+}
+
+TEST(SphericalHarmonics, TruncationKeepsTheLowerBands) {
+  // Degree 0 keeps c00 Y00 (the mean radiance) whatever g; degree 1 adds g c1m Y1m.
+  std::array<float, kMaxShCoefficients> c{};
+  c[0] = 2.0f;
+  c[2] = 1.0f;
+  std::array<double, kMaxShCoefficients> y;
+  spherical_harmonics(Vec3(0, 0, 1), y);
+  EXPECT_NEAR(hg_convolved(c.data(), y, 0.6, 0), 2.0 * y[0], 1e-12);
+  EXPECT_NEAR(hg_convolved(c.data(), y, 0.6, 1), 2.0 * y[0] + 0.6 * y[2], 1e-7);
+}
+
+}  // namespace
+}  // namespace obscura
