@@ -48,9 +48,9 @@ def test_bad_values_are_named_by_channel_and_voxel():
 
 
 def test_a_written_keyframe_renders_like_the_same_homogeneous_box(tmp_path, scene_dict):
-    # A uniform grid over the homogeneous cloud's box; trilinear reconstruction
-    # of constant values is that constant inside, so the two scenes agree
-    # where rays cross the inside of the box only.
+    # A uniform grid filling the homogeneous cloud's box exactly (the medium
+    # fills the grid's cells, values clamped in the outer half voxel:
+    # docs/formats.md), so both scenes hold the same medium.
     box = scene_dict["clouds"][0]
     nx, ny, nz = 2, 4, 4  # 1 m voxels over [-1.5, 0.5] x [-6, -2] x [0, 4]
     g = obscura.VoxelGrid(
@@ -59,8 +59,13 @@ def test_a_written_keyframe_renders_like_the_same_homogeneous_box(tmp_path, scen
         g=np.broadcast_to(np.array(box["g"], float), (nx, ny, nz, 2)).copy(),
         temperature=np.full((nx, ny, nz), 300.0), wavelengths_um=[4.0, 10.0],
         origin=tuple(box["min"]), voxel_size_m=1.0)
+    box_images = obscura.render(obscura.Scene.from_dict(scene_dict))
     obscura.write_keyframe(tmp_path / "box.vdb", g)
     scene_dict["clouds"] = [{"type": "vdb", "file": "box.vdb"}]
     images = obscura.render(obscura.Scene.load(write_scene(tmp_path, scene_dict)))
-    t = images["ir"].bands["lwir"].transmittance
-    assert t.min() < 0.9 and t.max() == 1.0
+    for band in ("mwir", "lwir"):
+        t = images["ir"].bands[band].transmittance
+        assert t.min() < 0.9 and t.max() == 1.0
+        np.testing.assert_allclose(t, box_images["ir"].bands[band].transmittance, rtol=1e-4)
+        np.testing.assert_allclose(images["ir"].bands[band].radiance,
+                                   box_images["ir"].bands[band].radiance, rtol=1e-4)
