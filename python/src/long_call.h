@@ -1,0 +1,59 @@
+#pragma once
+// A long library call (a render) run from Python: the GIL is released for its
+// duration, so other Python threads run; progress reports are forwarded to an
+// optional Python callable, and at each report Ctrl-C is checked
+// (PyErr_CheckSignals), so a render stops at the next image row with
+// KeyboardInterrupt instead of running to its end. An exception raised by the
+// callable stops the render the same way and reaches the caller unchanged.
+#include <pybind11/pybind11.h>
+
+#include <atomic>
+#include <exception>
+#include <mutex>
+#include <optional>
+#include <utility>
+
+#include "obscura/sequence/sequence_runner.h"
+
+namespace obscura::python {
+
+namespace py = pybind11;
+
+class LongCall {
+ public:
+  // `progress`: None or a callable taking one dict (frame, frames, time_s,
+  // sensor, rows_done, rows_total).
+  LongCall(py::object progress, const Scene& scene);
+
+  // What the library's progress callbacks call, from any thread. Throws (a
+  // type the library does not catch) to stop the render once Ctrl-C was
+  // pressed or the callable raised.
+  void report(const RenderProgress& p);
+
+  // Runs f() without the GIL; rethrows what stopped it (KeyboardInterrupt,
+  // the callable's exception) or the library's own error.
+  template <typename F>
+  auto run(F&& f) -> decltype(f()) {
+    std::optional<decltype(f())> result;
+    {
+      py::gil_scoped_release release;
+      try {
+        result.emplace(f());
+      } catch (const Stopped&) {
+        // stopped_ holds why; rethrown below with the GIL held.
+      }
+    }
+    if (stopped_) std::rethrow_exception(stopped_);
+    return std::move(*result);
+  }
+
+ private:
+  struct Stopped {};  // not a std::exception: nothing in the library catches it
+  py::object progress_;
+  const Scene& scene_;
+  std::mutex mutex_;  // one Python call at a time, reports in order
+  std::atomic<bool> stopping_{false};
+  std::exception_ptr stopped_;
+};
+
+}  // namespace obscura::python
