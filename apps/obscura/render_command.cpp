@@ -11,6 +11,7 @@
 #include "obscura/io/provenance.h"
 #include "obscura/report/sequence_output.h"
 #include "obscura/sequence/sequence_runner.h"
+#include "memory_option.h"
 #include "progress_printer.h"
 
 namespace obscura::cli {
@@ -53,7 +54,10 @@ Command add_render_command(CLI::App& app, const Invocation& invocation) {
                   "target surface screening metrics and their plots (docs/metrics.md)")
       ->excludes(at);
   cmd->add_flag("--json", o->json, "Print a JSON summary on stdout");
-  return {cmd, [o, invocation]() {
+  auto max_memory = std::make_shared<std::string>();
+  add_max_memory_option(cmd, max_memory);
+  return {cmd, [o, invocation, max_memory]() {
+            apply_max_memory(*max_memory);
             // Cheap checks of the command line first, before reading any file.
             if (!std::isfinite(o->at))
               throw InputError("", "--at", "must be a finite time in seconds");
