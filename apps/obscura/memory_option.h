@@ -2,9 +2,9 @@
 // --max-memory on the commands that read sizes from files (render, prepare,
 // validate): the limit every such size is checked against before it is
 // allocated (core/memory_limit.h). It wins over a scene's "max_memory".
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include <CLI/CLI.hpp>
 #include <memory>
 #include <string>
 

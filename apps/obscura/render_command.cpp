@@ -7,12 +7,12 @@
 #include <optional>
 
 #include "commands.h"
+#include "memory_option.h"
 #include "obscura/core/check.h"
 #include "obscura/core/error.h"
 #include "obscura/io/provenance.h"
 #include "obscura/report/sequence_output.h"
 #include "obscura/sequence/sequence_runner.h"
-#include "memory_option.h"
 #include "progress_printer.h"
 
 namespace obscura::cli {

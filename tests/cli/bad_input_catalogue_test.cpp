@@ -96,8 +96,8 @@ class Catalogue : public testing::TempDirTest, public ::testing::WithParamInterf
   }
   std::string mesh_scene(const std::string& obj_name) {
     nlohmann::json s = scene();
-    s["surfaces"].push_back({{"type", "mesh"}, {"name", "tank"}, {"file", obj_name},
-                             {"temperature", 300}});
+    s["surfaces"].push_back(
+        {{"type", "mesh"}, {"name", "tank"}, {"file", obj_name}, {"temperature", 300}});
     return write("scene.json", s.dump(2));
   }
   static constexpr const char* kTriangle = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
@@ -108,17 +108,19 @@ std::vector<BadInput> catalogue() {
   std::vector<BadInput> t;
   auto add = [&](std::string name, std::function<std::string(C&)> setup, int status,
                  std::vector<std::string> expected, std::string output = "out") {
-    t.push_back({std::move(name), std::move(setup), status, std::move(expected),
-                 std::move(output)});
+    t.push_back(
+        {std::move(name), std::move(setup), status, std::move(expected), std::move(output)});
   };
 
   // ---- scene files: the path itself --------------------------------------
   add("SceneMissing", [](C& c) { return c.render(c.path("none.json")); }, 1,
       {"none.json", "no such file"});
-  add("SceneIsAFolder", [](C& c) {
+  add("SceneIsAFolder",
+      [](C& c) {
         fs::create_directory(c.path("scene.json"));
         return c.render(c.path("scene.json"));
-      }, 1, {"scene.json", "is a folder, expected a JSON file"});
+      },
+      1, {"scene.json", "is a folder, expected a JSON file"});
   add("SceneEmpty", [](C& c) { return c.render_text(""); }, 1,
       {"scene.json", "line 1 column 1", "invalid JSON"});
   add("SceneSyntaxError", [](C& c) { return c.render_text("{\n  \"sensors\": [\n}"); }, 1,
@@ -130,9 +132,9 @@ std::vector<BadInput> catalogue() {
       {"scene.json", "/: expected a JSON object, found array"});
 
   // ---- scene files: JSON the DOM parser accepted silently or crashed on --
-  add("SceneNested100000Deep", [](C& c) {
-        return c.render_text(std::string(100000, '[') + std::string(100000, ']'));
-      }, 1, {"scene.json", "nested more than 256 levels"});
+  add("SceneNested100000Deep",
+      [](C& c) { return c.render_text(std::string(100000, '[') + std::string(100000, ']')); }, 1,
+      {"scene.json", "nested more than 256 levels"});
   add("SceneDuplicateKey",
       [](C& c) { return c.render_text(c.scene_text("\"width\":24", "\"width\":24,\"width\":25")); },
       1, {"scene.json", "/sensors/0/width", "duplicate key"});
@@ -151,8 +153,8 @@ std::vector<BadInput> catalogue() {
       [](C& c) { return c.render_text(c.scene_text("\"fov_deg\":30", "\"fov_deg\":NaN")); }, 1,
       {"scene.json", "line 1 column", "invalid JSON"});
   add("SceneInfinityLiteral",
-      [](C& c) { return c.render_text(c.scene_text("\"fov_deg\":30", "\"fov_deg\":Infinity")); },
-      1, {"scene.json", "line 1 column", "invalid JSON"});
+      [](C& c) { return c.render_text(c.scene_text("\"fov_deg\":30", "\"fov_deg\":Infinity")); }, 1,
+      {"scene.json", "line 1 column", "invalid JSON"});
   add("SceneIntegerBeyondInt64",
       [](C& c) {
         return c.render_text(c.scene_text("\"width\":24", "\"width\":18446744073709551615"));
@@ -165,9 +167,8 @@ std::vector<BadInput> catalogue() {
       1, {"scene.json", "/sensors/0/width", "expected an integer"});
 
   // ---- scene files: fields -------------------------------------------------
-  add("SceneMisspeltKey",
-      [](C& c) { return c.render_text(c.scene_text("\"sky\":", "\"skye\":")); }, 1,
-      {"scene.json", "/skye", "unknown field"});
+  add("SceneMisspeltKey", [](C& c) { return c.render_text(c.scene_text("\"sky\":", "\"skye\":")); },
+      1, {"scene.json", "/skye", "unknown field"});
   add("SceneNoSensors", [](C& c) { return c.render_text("{}"); }, 1,
       {"scene.json", "/sensors", "missing required field"});
   add("SceneSensorsNotAnArray", [](C& c) { return c.render_text("{\"sensors\": 3}"); }, 1,
@@ -181,147 +182,193 @@ std::vector<BadInput> catalogue() {
   add("SceneUnknownBand",
       [](C& c) { return c.render_text(c.scene_text("\"mwir\"", "\"ultraviolet\"")); }, 1,
       {"scene.json", "/sensors/0/bands/0"});
-  add("SceneSunWithoutScattering", [](C& c) {
+  add("SceneSunWithoutScattering",
+      [](C& c) {
         nlohmann::json s = C::scene();
         s["sun"] = {{"elevation_deg", 30}};
         return c.render_json(s);
-      }, 1, {"scene.json", "/sun"});
-  add("SceneCloudFileMissing",
-      [](C& c) { return c.render_json(C::scene("nowhere.vdb")); }, 1,
+      },
+      1, {"scene.json", "/sun"});
+  add("SceneCloudFileMissing", [](C& c) { return c.render_json(C::scene("nowhere.vdb")); }, 1,
       {"scene.json", "/clouds/0/file", "no such file"});
 
   // ---- memory limits -------------------------------------------------------
-  add("ImageLargerThanMaxMemory", [](C& c) { return c.render_json(C::scene(), " --max-memory 4kB"); },
-      1, {"scene.json", "/sensors/0/bands", "a 24x16 image with 2 bands needs",
-          "the limit set by --max-memory"});
-  add("ImageLargerThanSceneMaxMemory", [](C& c) {
+  add("ImageLargerThanMaxMemory",
+      [](C& c) { return c.render_json(C::scene(), " --max-memory 4kB"); }, 1,
+      {"scene.json", "/sensors/0/bands", "a 24x16 image with 2 bands needs",
+       "the limit set by --max-memory"});
+  add("ImageLargerThanSceneMaxMemory",
+      [](C& c) {
         nlohmann::json s = C::scene();
         s["max_memory"] = "4kB";
         return c.render_json(s);
-      }, 1, {"scene.json", "/sensors/0/bands", "needs", "the scene's max_memory"});
-  add("SceneMaxMemoryNotASize", [](C& c) {
+      },
+      1, {"scene.json", "/sensors/0/bands", "needs", "the scene's max_memory"});
+  add("SceneMaxMemoryNotASize",
+      [](C& c) {
         nlohmann::json s = C::scene();
         s["max_memory"] = "plenty";
         return c.render_json(s);
-      }, 1, {"scene.json", "/max_memory", "'plenty' is not a memory size"});
+      },
+      1, {"scene.json", "/max_memory", "'plenty' is not a memory size"});
   add("MaxMemoryOptionNotASize",
       [](C& c) { return c.render_json(C::scene(), " --max-memory lots"); }, 1,
       {"--max-memory", "'lots' is not a memory size"});
   add("GridLargerThanMaxMemory",
       [](C& c) { return c.render_json(C::scene(c.puff()), " --max-memory 64kB"); }, 1,
       {"puff.vdb", "dims", "grid 16x16x16 with 7 channels needs", "--max-memory"});
-  add("PhotonsLargerThanMaxMemory", [](C& c) {
+  add("PhotonsLargerThanMaxMemory",
+      [](C& c) {
         nlohmann::json s = C::scene();
         s["render"] = {{"method", "photonmap"}, {"photon_map", {{"photons", 2000000000}}}};
         return c.render_json(s, " --max-memory 1GiB");
-      }, 1, {"scene.json", "/render/photon_map/photons", "needs", "--max-memory"});
+      },
+      1, {"scene.json", "/render/photon_map/photons", "needs", "--max-memory"});
 
   // ---- VDB keyframes -------------------------------------------------------
   add("VdbCutTo100Bytes", [](C& c) { return c.render_json(C::scene(c.cut_puff(100))); }, 1,
       {"cut.vdb", "truncated"});
   add("VdbCutTo400Bytes", [](C& c) { return c.render_json(C::scene(c.cut_puff(400))); }, 1,
       {"cut.vdb", "truncated"});
-  add("VdbCutInHalf", [](C& c) {
+  add("VdbCutInHalf",
+      [](C& c) {
         c.puff("whole.vdb");
-        return c.render_json(C::scene(c.cut_puff(
-            static_cast<long long>(fs::file_size(c.path("whole.vdb")) / 2))));
-      }, 1, {"cut.vdb", "truncated"});
+        return c.render_json(
+            C::scene(c.cut_puff(static_cast<long long>(fs::file_size(c.path("whole.vdb")) / 2))));
+      },
+      1, {"cut.vdb", "truncated"});
   add("VdbOneByteShort", [](C& c) { return c.render_json(C::scene(c.cut_puff(-1))); }, 1,
       {"cut.vdb", "truncated"});
-  add("VdbIsText", [](C& c) {
+  add("VdbIsText",
+      [](C& c) {
         c.write("text.vdb", "this is not a VDB file\n");
         return c.render_json(C::scene("text.vdb"));
-      }, 1, {"text.vdb", "not an OpenVDB file"});
-  add("VdbIsAFolder", [](C& c) {
+      },
+      1, {"text.vdb", "not an OpenVDB file"});
+  add("VdbIsAFolder",
+      [](C& c) {
         fs::create_directory(c.path("dir.vdb"));
         return c.render_json(C::scene("dir.vdb"));
-      }, 1, {"dir.vdb", "not a regular file"});
-  add("InfoOnTruncatedVdb", [](C& c) { return "info " + c.cut_puff(300); }, 1,
+      },
+      1, {"dir.vdb", "not a regular file"});
+  add(
+      "InfoOnTruncatedVdb", [](C& c) { return "info " + c.cut_puff(300); }, 1,
       {"cut.vdb", "truncated"}, "");
 
   // ---- OBJ meshes ----------------------------------------------------------
-  add("ObjFaceIndexOverflow", [](C& c) {
+  add("ObjFaceIndexOverflow",
+      [](C& c) {
         c.write("tank.obj", std::string(C::kTriangle) + "f 1 2 99999999999999\n");
         return c.render(c.mesh_scene("tank.obj"));
-      }, 1, {"tank.obj", "line 4", "'99999999999999' is out of range"});
-  add("ObjVertexNotFinite", [](C& c) {
+      },
+      1, {"tank.obj", "line 4", "'99999999999999' is out of range"});
+  add("ObjVertexNotFinite",
+      [](C& c) {
         c.write("tank.obj", "v 0 0 0\nv 1 nan 0\nv 0 1 0\nf 1 2 3\n");
         return c.render(c.mesh_scene("tank.obj"));
-      }, 1, {"tank.obj", "line 2", "not finite"});
-  add("ObjIndexBeyondVertices", [](C& c) {
+      },
+      1, {"tank.obj", "line 2", "not finite"});
+  add("ObjIndexBeyondVertices",
+      [](C& c) {
         c.write("tank.obj", std::string(C::kTriangle) + "f 1 2 9\n");
         return c.render(c.mesh_scene("tank.obj"));
-      }, 1, {"tank.obj", "line 4", "vertex index 9 is out of range"});
-  add("ObjIsAFolder", [](C& c) {
+      },
+      1, {"tank.obj", "line 4", "vertex index 9 is out of range"});
+  add("ObjIsAFolder",
+      [](C& c) {
         fs::create_directory(c.path("tank.obj"));
         return c.render(c.mesh_scene("tank.obj"));
-      }, 1, {"tank.obj"});
+      },
+      1, {"tank.obj"});
 
   // ---- cloud manifests -----------------------------------------------------
-  add("ManifestDuplicateKey", [](C& c) {
+  add(
+      "ManifestDuplicateKey",
+      [](C& c) {
         c.puff();
         return "cloud-state " +
-               c.write("cloud.json", R"({"keyframes": [{"file": "puff.vdb", "time": 0, "time": 1}]})") +
+               c.write("cloud.json",
+                       R"({"keyframes": [{"file": "puff.vdb", "time": 0, "time": 1}]})") +
                " --at 0";
-      }, 1, {"cloud.json", "/keyframes/0/time", "duplicate key"}, "");
-  add("ManifestIsAFolder", [](C& c) {
+      },
+      1, {"cloud.json", "/keyframes/0/time", "duplicate key"}, "");
+  add(
+      "ManifestIsAFolder",
+      [](C& c) {
         fs::create_directory(c.path("cloud.json"));
         return "cloud-state " + c.path("cloud.json") + " --at 0";
-      }, 1, {"cloud.json", "is a folder"}, "");
-  add("ManifestTimeOverflow", [](C& c) {
+      },
+      1, {"cloud.json", "is a folder"}, "");
+  add(
+      "ManifestTimeOverflow",
+      [](C& c) {
         c.puff();
         return "cloud-state " +
                c.write("cloud.json", R"({"keyframes": [{"file": "puff.vdb", "time": 1e999}]})") +
                " --at 0";
-      }, 1, {"cloud.json", "/keyframes/0/time", "outside the range of a double"}, "");
+      },
+      1, {"cloud.json", "/keyframes/0/time", "outside the range of a double"}, "");
 
   // ---- prepare configurations ----------------------------------------------
   add("PrepareConfigMissing",
       [](C& c) { return "prepare " + c.path("none.json") + " -o " + c.path("out"); }, 1,
       {"none.json", "no such file"});
-  add("PrepareConfigIsAFolder", [](C& c) {
+  add("PrepareConfigIsAFolder",
+      [](C& c) {
         fs::create_directory(c.path("prep.json"));
         return "prepare " + c.path("prep.json") + " -o " + c.path("out");
-      }, 1, {"prep.json", "is a folder"});
-  add("PrepareConfigDuplicateKey", [](C& c) {
+      },
+      1, {"prep.json", "is a folder"});
+  add("PrepareConfigDuplicateKey",
+      [](C& c) {
         return "prepare " + c.write("prep.json", R"({"source": "x", "source": "y"})") + " -o " +
                c.path("out");
-      }, 1, {"prep.json", "/source", "duplicate key"});
-  add("PrepareConfigDeep", [](C& c) {
-        return "prepare " +
-               c.write("prep.json", std::string(5000, '[') + std::string(5000, ']')) + " -o " +
-               c.path("out");
-      }, 1, {"prep.json", "nested more than 256"});
-  add("PrepareMaxMemoryNotASize", [](C& c) {
+      },
+      1, {"prep.json", "/source", "duplicate key"});
+  add("PrepareConfigDeep",
+      [](C& c) {
+        return "prepare " + c.write("prep.json", std::string(5000, '[') + std::string(5000, ']')) +
+               " -o " + c.path("out");
+      },
+      1, {"prep.json", "nested more than 256"});
+  add("PrepareMaxMemoryNotASize",
+      [](C& c) {
         return "prepare " + c.write("prep.json", "{}") + " -o " + c.path("out") +
                " --max-memory 12XB";
-      }, 1, {"--max-memory", "not a memory size"});
+      },
+      1, {"--max-memory", "not a memory size"});
 
   // ---- command lines (usage errors: 64) ------------------------------------
-  add("NoSubcommand", [](C&) { return std::string(); }, 64, {"subcommand"}, "");
-  add("UnknownSubcommand", [](C&) { return std::string("frobnicate"); }, 64, {"frobnicate"}, "");
-  add("RenderThreadsNotANumber",
-      [](C& c) { return c.render_json(C::scene(), " --threads two"); }, 64, {"--threads", "two"});
-  add("RenderThreadsOutOfRange",
-      [](C& c) { return c.render_json(C::scene(), " --threads 99999"); }, 64, {"--threads"});
-  add("RenderUnknownOption",
-      [](C& c) { return c.render_json(C::scene(), " --frobnicate"); }, 64, {"--frobnicate"});
+  add(
+      "NoSubcommand", [](C&) { return std::string(); }, 64, {"subcommand"}, "");
+  add(
+      "UnknownSubcommand", [](C&) { return std::string("frobnicate"); }, 64, {"frobnicate"}, "");
+  add("RenderThreadsNotANumber", [](C& c) { return c.render_json(C::scene(), " --threads two"); },
+      64, {"--threads", "two"});
+  add("RenderThreadsOutOfRange", [](C& c) { return c.render_json(C::scene(), " --threads 99999"); },
+      64, {"--threads"});
+  add("RenderUnknownOption", [](C& c) { return c.render_json(C::scene(), " --frobnicate"); }, 64,
+      {"--frobnicate"});
   add("RenderWithoutOutput",
       [](C& c) { return "render " + c.write("scene.json", C::scene().dump()); }, 64, {"--output"});
   add("RenderAtNotANumber", [](C& c) { return c.render_json(C::scene(), " --at soon"); }, 64,
       {"--at", "soon"});
-  add("MieSizeParameterNotANumber",
+  add(
+      "MieSizeParameterNotANumber",
       [](C&) { return std::string("mie --size-parameter big --index 1.5"); }, 64,
       {"--size-parameter"}, "");
-  add("ValidateUnknownOption", [](C&) { return std::string("validate slab --tau-x 1"); }, 64,
+  add(
+      "ValidateUnknownOption", [](C&) { return std::string("validate slab --tau-x 1"); }, 64,
       {"--tau-x"}, "");
 
   // ---- command-line values the tool checks itself (1) ----------------------
   add("RenderTimeRangeWithZeroStep",
       [](C& c) { return c.render_json(C::scene(), " --time 0:1:0"); }, 1, {"--time"});
-  add("ValidateMaxMemoryNotASize",
-      [](C&) { return std::string("validate slab --max-memory -3G"); }, 1, {"--max-memory"}, "");
-  add("RadianceBadBand", [](C&) { return std::string("radiance --temperature 300 --band 12:8"); },
+  add(
+      "ValidateMaxMemoryNotASize", [](C&) { return std::string("validate slab --max-memory -3G"); },
+      1, {"--max-memory"}, "");
+  add(
+      "RadianceBadBand", [](C&) { return std::string("radiance --temperature 300 --band 12:8"); },
       1, {"--band"}, "");
   return t;
 }
@@ -345,9 +392,7 @@ TEST_P(Catalogue, FailsCleanlyNamingFileAndField) {
 }
 
 INSTANTIATE_TEST_SUITE_P(BadInputs, Catalogue, ::testing::ValuesIn(catalogue()),
-                         [](const ::testing::TestParamInfo<BadInput>& p) {
-                           return p.param.name;
-                         });
+                         [](const ::testing::TestParamInfo<BadInput>& p) { return p.param.name; });
 
 }  // namespace
 }  // namespace obscura

@@ -164,9 +164,9 @@ TEST_F(RenderSequenceTest, NextRunRemovesAKilledRunsTemporaries) {
   std::ofstream(out / ".ir_f0000.exr.tmp-999999999-3") << "half a file";
   const std::string live = ".mine.exr.tmp-" + std::to_string(::getpid()) + "-0";
   std::ofstream(out / live) << "being written";
-  const auto r = testing::run_cli("render " + (dir_ / "scene.json").string() + " -o " +
-                                      out.string() + " --at 0 --threads 2",
-                                  dir_);
+  const auto r = testing::run_cli(
+      "render " + (dir_ / "scene.json").string() + " -o " + out.string() + " --at 0 --threads 2",
+      dir_);
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_FALSE(fs::exists(out / ".x.partial-999999999"));
   EXPECT_FALSE(fs::exists(out / ".ir_f0000.exr.tmp-999999999-3"));

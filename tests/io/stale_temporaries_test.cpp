@@ -19,9 +19,9 @@ TEST(StaleTemporaries, RecognisesTheRunIdInTemporaryNames) {
   EXPECT_EQ(temporary_run_id(".ir.exr.tmp-1234-7"), 1234);
   EXPECT_EQ(temporary_run_id(".o_pk.partial-99"), 99);
   EXPECT_EQ(temporary_run_id(".a.tmp-b.tmp-5-0"), 5);
-  for (const char* not_one : {"ir.exr", ".ir.exr", "ir.exr.tmp-1-2", ".ir.exr.tmp-", ".x.tmp-12",
-                              ".x.tmp-12-", ".x.tmp-a-1", ".x.partial-12x", ".x.tmp-0-1",
-                              ".tmp-5-1"})
+  for (const char* not_one :
+       {"ir.exr", ".ir.exr", "ir.exr.tmp-1-2", ".ir.exr.tmp-", ".x.tmp-12", ".x.tmp-12-",
+        ".x.tmp-a-1", ".x.partial-12x", ".x.tmp-0-1", ".tmp-5-1"})
     EXPECT_FALSE(temporary_run_id(not_one)) << not_one;
 }
 

@@ -31,9 +31,8 @@ Limit& limit() {
 // The default, computed once: MemAvailable moves as other processes run, and
 // one run should check every size against the same limit.
 std::uint64_t default_limit() {
-  static const std::uint64_t bytes =
-      static_cast<std::uint64_t>(static_cast<double>(available_memory_bytes()) *
-                                 kDefaultMemoryFraction);
+  static const std::uint64_t bytes = static_cast<std::uint64_t>(
+      static_cast<double>(available_memory_bytes()) * kDefaultMemoryFraction);
   return bytes;
 }
 
@@ -105,9 +104,9 @@ std::string memory_limit_text() {
 void check_memory(std::uint64_t bytes, const std::string& file, const std::string& field,
                   std::string_view what) {
   if (bytes <= memory_limit_bytes()) return;
-  throw InputError(file, field,
-                   fmt::format("{} needs {:.3g} GiB but only {}", what, gib(bytes),
-                               memory_limit_text()));
+  throw InputError(
+      file, field,
+      fmt::format("{} needs {:.3g} GiB but only {}", what, gib(bytes), memory_limit_text()));
 }
 
 std::optional<std::uint64_t> parse_memory_size(std::string_view text) {
@@ -122,13 +121,20 @@ std::optional<std::uint64_t> parse_memory_size(std::string_view text) {
     double factor;
   };
   static const Unit units[] = {
-      {"", 1},          {"b", 1},
-      {"k", 1024.0},    {"kib", 1024.0},
-      {"m", 1048576.0}, {"mib", 1048576.0},
-      {"g", 1073741824.0}, {"gib", 1073741824.0},
-      {"t", 1099511627776.0}, {"tib", 1099511627776.0},
-      {"kb", 1e3},      {"mb", 1e6},
-      {"gb", 1e9},      {"tb", 1e12},
+      {"", 1},
+      {"b", 1},
+      {"k", 1024.0},
+      {"kib", 1024.0},
+      {"m", 1048576.0},
+      {"mib", 1048576.0},
+      {"g", 1073741824.0},
+      {"gib", 1073741824.0},
+      {"t", 1099511627776.0},
+      {"tib", 1099511627776.0},
+      {"kb", 1e3},
+      {"mb", 1e6},
+      {"gb", 1e9},
+      {"tb", 1e12},
   };
   for (const Unit& u : units) {
     if (unit != u.name) continue;

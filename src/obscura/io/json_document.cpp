@@ -59,9 +59,9 @@ class CheckedBuilder : public nlohmann::json_sax<json> {
                    const nlohmann::detail::exception& e) override {
     // 406: a number the lexer read but a double cannot hold (1e999).
     if (e.id == 406)
-      throw InputError(file_, shorten(next_path()),
-                       fmt::format("number {} is outside the range of a double (about ±1.8e308)",
-                                   token));
+      throw InputError(
+          file_, shorten(next_path()),
+          fmt::format("number {} is outside the range of a double (about ±1.8e308)", token));
     std::string what = e.what();
     const auto at = what.find("syntax error");
     throw InputError(file_, line_and_column(text_, position),
@@ -103,9 +103,9 @@ class CheckedBuilder : public nlohmann::json_sax<json> {
   }
   bool open(json&& container) {
     if (stack_.size() >= kMaxJsonDepth)
-      throw InputError(file_, shorten(next_path()),
-                       fmt::format("arrays and objects nested more than {} levels deep",
-                                   kMaxJsonDepth));
+      throw InputError(
+          file_, shorten(next_path()),
+          fmt::format("arrays and objects nested more than {} levels deep", kMaxJsonDepth));
     std::string segment;
     if (!stack_.empty())
       segment = stack_.back()->is_object() ? key_ : std::to_string(stack_.back()->size());

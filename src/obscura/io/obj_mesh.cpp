@@ -51,16 +51,16 @@ void check_face_corner(std::string_view corner, const std::string& file, const s
       long long value = 0;
       const char* end = number.data() + number.size();
       const auto [ptr, ec] = std::from_chars(number.data(), end, value);
-      if (ec == std::errc::result_out_of_range || (ec == std::errc() && ptr == end &&
-                                                   (value > std::numeric_limits<int>::max() ||
-                                                    value < -std::numeric_limits<int>::max())))
+      if (ec == std::errc::result_out_of_range ||
+          (ec == std::errc() && ptr == end &&
+           (value > std::numeric_limits<int>::max() || value < -std::numeric_limits<int>::max())))
         throw InputError(file, field,
                          fmt::format("face index '{}' is out of range (at most {})", number,
                                      std::numeric_limits<int>::max()));
       if (number.empty() || ec != std::errc() || ptr != end)
-        throw InputError(file, field,
-                         fmt::format("face corner '{}': index '{}' is not an integer", corner,
-                                     number));
+        throw InputError(
+            file, field,
+            fmt::format("face corner '{}': index '{}' is not an integer", corner, number));
     }
     start = slash + 1;
   }

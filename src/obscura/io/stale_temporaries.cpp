@@ -43,8 +43,7 @@ std::optional<long> temporary_run_id(std::string_view name) {
       std::size_t counter_used = 0;
       if (tail.size() < 2 || tail[0] != '-') continue;
       long counter = 0;
-      const auto [ptr, ec] =
-          std::from_chars(tail.data() + 1, tail.data() + tail.size(), counter);
+      const auto [ptr, ec] = std::from_chars(tail.data() + 1, tail.data() + tail.size(), counter);
       counter_used = static_cast<std::size_t>(ptr - tail.data());
       if (ec != std::errc() || counter_used != tail.size()) continue;
     } else if (!tail.empty()) {

@@ -8,12 +8,12 @@
 
 #include "obscura/core/error.h"
 #include "obscura/core/memory_limit.h"
+#include "obscura/io/json_document.h"
 #include "obscura/io/json_reader.h"
 #include "obscura/io/vdb_keyframe.h"
 #include "obscura/io/vdb_keyframe_forms.h"
 #include "obscura/io/vdb_keyframe_grids.h"
 #include "obscura/io/vdb_keyframe_layout.h"
-#include "obscura/io/json_document.h"
 #include "obscura/io/vdb_keyframe_metadata.h"
 #include "obscura/io/vdb_keyframe_placement.h"
 

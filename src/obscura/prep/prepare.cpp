@@ -9,10 +9,10 @@
 #include <nlohmann/json.hpp>
 
 #include "obscura/core/error.h"
-#include "obscura/io/stale_temporaries.h"
 #include "obscura/io/cloud_manifest.h"
 #include "obscura/io/json_reader.h"
 #include "obscura/io/netcdf_cf.h"
+#include "obscura/io/stale_temporaries.h"
 #include "obscura/io/vdb_keyframe.h"
 #include "obscura/io/vtk_structured_points.h"
 #include "obscura/optics/material.h"

@@ -193,9 +193,8 @@ void SequenceWriter::write_frame(const RenderedFrame& frame) {
 }
 
 void SequenceWriter::finish_failed(const std::string& error) {
-  summary_["failed"] = {{"error", error},
-                        {"frames_completed", frames_done_},
-                        {"frames_planned", times_s_.size()}};
+  summary_["failed"] = {
+      {"error", error}, {"frames_completed", frames_done_}, {"frames_planned", times_s_.size()}};
   summary_["outputs"] = nlohmann::json::array();
   for (const auto& p : written_) summary_["outputs"].push_back(p.string());
   const auto summary_path = dir_ / "summary.json";

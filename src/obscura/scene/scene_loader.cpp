@@ -236,9 +236,8 @@ Sensor parse_sensor(JsonObject o, int index) {
   // The images the render fills (film/sensor_image.h): per band radiance,
   // transmittance, apparent temperature and standard error, and the samples
   // per pixel; 16384² × 64 bands took 7.4 GB before failing in bad_alloc.
-  const auto bytes =
-      checked_product({static_cast<std::uint64_t>(w), static_cast<std::uint64_t>(h),
-                       4 * sizeof(float) * s.bands.size() + sizeof(std::uint32_t)});
+  const auto bytes = checked_product({static_cast<std::uint64_t>(w), static_cast<std::uint64_t>(h),
+                                      4 * sizeof(float) * s.bands.size() + sizeof(std::uint32_t)});
   check_memory(bytes.value_or(UINT64_MAX), o.file(), o.path_of("bands"),
                fmt::format("a {}x{} image with {} bands", w, h, s.bands.size()));
   o.finish();
