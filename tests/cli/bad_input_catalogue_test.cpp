@@ -250,7 +250,7 @@ std::vector<BadInput> catalogue() {
         fs::create_directory(c.path("dir.vdb"));
         return c.render_json(C::scene("dir.vdb"));
       },
-      1, {"dir.vdb", "not a regular file"});
+      1, {"dir.vdb", "is a folder, expected a cloud keyframe file"});
   add(
       "InfoOnTruncatedVdb", [](C& c) { return "info " + c.cut_puff(300); }, 1,
       {"cut.vdb", "truncated"}, "");
@@ -279,7 +279,7 @@ std::vector<BadInput> catalogue() {
         fs::create_directory(c.path("tank.obj"));
         return c.render(c.mesh_scene("tank.obj"));
       },
-      1, {"tank.obj"});
+      1, {"/surfaces/1/file", "tank.obj", "is a folder"});
 
   // ---- cloud manifests -----------------------------------------------------
   add(
@@ -364,7 +364,7 @@ std::vector<BadInput> catalogue() {
   add("RenderTimeRangeWithZeroStep",
       [](C& c) { return c.render_json(C::scene(), " --time 0:1:0"); }, 1, {"--time"});
   add(
-      "ValidateMaxMemoryNotASize", [](C&) { return std::string("validate slab --max-memory -3G"); },
+      "ValidateMaxMemoryNotASize", [](C&) { return std::string("validate slab --max-memory 3XB"); },
       1, {"--max-memory"}, "");
   // mie reads its numbers itself (apps/obscura/option_parsing.h): bad input, 1.
   add(

@@ -66,6 +66,8 @@ std::filesystem::path input_file(JsonObject& o, const std::string& key,
                                  Scene& scene) {
   std::filesystem::path file = o.string(key);
   if (file.is_relative()) file = base / file;
+  if (std::filesystem::is_directory(file))
+    throw o.error(key, fmt::format("'{}' is a folder, expected a {} file", file.string(), what));
   if (!std::filesystem::is_regular_file(file))
     throw o.error(key, fmt::format("cannot open {} '{}': no such file", what, file.string()));
   scene.input_files.push_back(file);
