@@ -16,10 +16,18 @@ namespace {
 
 // CLI11 exits with its own codes (105, 106, 109, …) and no prefix; every usage
 // error gets the tool's prefix and one documented status instead (docs/errors.md).
-int usage_error(const CLI::App& app, const CLI::ParseError& e) {
+int usage_error(CLI::App& app, const CLI::ParseError& e, int argc, char** argv) {
   // --help and --version are parse "errors" with status 0: CLI11 prints them.
   if (e.get_exit_code() == 0) return app.exit(e);
-  std::cerr << "obscura: error: " << e.what() << "\n"
+  // CLI11 reports an unknown command word only as "a subcommand is required".
+  std::string what = e.what();
+  if (argc > 1 && argv[1][0] != '-' && app.get_subcommands().empty()) {
+    std::string known;
+    for (const CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; }))
+      known += (known.empty() ? "" : ", ") + sub->get_name();
+    what = fmt::format("'{}' is not a command (expected one of: {})", argv[1], known);
+  }
+  std::cerr << "obscura: error: " << what << "\n"
             << "run 'obscura --help' or 'obscura <command> --help' for usage\n";
   return obscura::cli::kExitUsage;
 }
@@ -58,7 +66,7 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return usage_error(app, e);
+    return usage_error(app, e, argc, argv);
   }
   try {
     for (auto* sub : app.get_subcommands()) return runners.at(sub)();
