@@ -3,11 +3,46 @@
 
 #include <iostream>
 #include <map>
+#include <new>
 
 #include "commands.h"
+#include "exit_status.h"
+#include "obscura/core/check.h"
 #include "obscura/core/error.h"
 #include "obscura/core/version.h"
 #include "obscura/io/provenance.h"
+
+namespace {
+
+// CLI11 exits with its own codes (105, 106, 109, …) and no prefix; every usage
+// error gets the tool's prefix and one documented status instead (docs/errors.md).
+int usage_error(CLI::App& app, const CLI::ParseError& e, int argc, char** argv) {
+  // --help and --version are parse "errors" with status 0: CLI11 prints them.
+  if (e.get_exit_code() == 0) return app.exit(e);
+  // CLI11 reports an unknown command word only as "a subcommand is required".
+  std::string what = e.what();
+  if (argc > 1 && argv[1][0] != '-' && app.get_subcommands().empty()) {
+    std::string known;
+    for (const CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; }))
+      known += (known.empty() ? "" : ", ") + sub->get_name();
+    what = fmt::format("'{}' is not a command (expected one of: {})", argv[1], known);
+  }
+  std::cerr << "obscura: error: " << what << "\n"
+            << "run 'obscura --help' or 'obscura <command> --help' for usage\n";
+  return obscura::cli::kExitUsage;
+}
+
+// A bug, not bad input: say so and ask for a report.
+int internal_error(const std::string& what) {
+  std::string detail = what;
+  if (detail.rfind("internal error: ", 0) == 0) detail.erase(0, 16);
+  std::cerr << "obscura: internal error: " << detail << "\n"
+            << "this is a bug in obscura; please report it with the command line and the input "
+               "files\n";
+  return obscura::cli::kExitInternal;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"obscura: sensor radiance through battlefield obscurant clouds", "obscura"};
@@ -31,16 +66,22 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    return usage_error(app, e, argc, argv);
   }
   try {
     for (auto* sub : app.get_subcommands()) return runners.at(sub)();
+  } catch (const obscura::InternalError& e) {
+    return internal_error(e.what());
   } catch (const obscura::Error& e) {
     std::cerr << "obscura: error: " << e.what() << "\n";
-    return 1;
+    return obscura::cli::kExitInputError;
+  } catch (const std::bad_alloc&) {
+    // Sizes from files are checked against the memory limit before they are
+    // allocated (core/memory_limit.h): an allocation failing anyway is a size
+    // nobody checked.
+    return internal_error("out of memory in an allocation that was not checked first");
   } catch (const std::exception& e) {
-    std::cerr << "obscura: internal error: " << e.what() << "\n";
-    return 2;
+    return internal_error(e.what());
   }
-  return 1;
+  return obscura::cli::kExitInputError;
 }

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.h"
+#include "memory_option.h"
 #include "obscura/prep/prepare.h"
 
 namespace obscura::cli {
@@ -28,7 +29,10 @@ Command add_prepare_command(CLI::App& app, const Invocation& invocation) {
   cmd->add_option("--threads", o->threads, "Threads (0: all cores)")->capture_default_str();
   cmd->add_flag("--json", o->json, "Print a JSON summary instead of text");
   cmd->add_flag("-q,--quiet", o->quiet, "No progress on stderr");
-  return {cmd, [o, &invocation]() {
+  auto max_memory = std::make_shared<std::string>();
+  add_max_memory_option(cmd, max_memory);
+  return {cmd, [o, &invocation, max_memory]() {
+            apply_max_memory(*max_memory);
             PrepareOptions options;
             options.threads = o->threads;
             options.command_line = invocation.command_line;

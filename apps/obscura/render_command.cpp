@@ -7,6 +7,8 @@
 #include <optional>
 
 #include "commands.h"
+#include "memory_option.h"
+#include "obscura/core/check.h"
 #include "obscura/core/error.h"
 #include "obscura/io/provenance.h"
 #include "obscura/report/sequence_output.h"
@@ -25,6 +27,26 @@ void warn_about_blind_sensors(const std::vector<TargetMask>& masks) {
         "obscura: warning: no target pixel in view of sensor {}: its screening metrics are empty "
         "(null)\n",
         blind);
+}
+
+// A sequence that fails part-way keeps every frame that completed (each was
+// written whole) and records the failure and those frames in summary.json;
+// the error still ends the run (exit 1), now saying what was kept.
+SequenceResult render_or_keep_frames(Scene& scene, const std::vector<double>& times,
+                                     const SequenceOptions& options, SequenceWriter& writer) {
+  try {
+    return render_sequence(scene, times, options);
+  } catch (const Error& e) {
+    if (writer.frames_done().empty()) throw;
+    writer.finish_failed(e.what());
+    const std::string kept = fmt::format(
+        " (kept the {} completed frames {}–{} and summary.json in {})", writer.frames_done().size(),
+        writer.frames_done().front(), writer.frames_done().back(), writer.dir().string());
+    if (const auto* input = dynamic_cast<const InputError*>(&e))
+      throw InputError(input->file(), input->field(), input->detail() + kept);
+    if (dynamic_cast<const InternalError*>(&e)) throw;
+    throw Error(e.what() + kept);
+  }
 }
 
 }  // namespace
@@ -53,7 +75,10 @@ Command add_render_command(CLI::App& app, const Invocation& invocation) {
                   "target surface screening metrics and their plots (docs/metrics.md)")
       ->excludes(at);
   cmd->add_flag("--json", o->json, "Print a JSON summary on stdout");
-  return {cmd, [o, invocation]() {
+  auto max_memory = std::make_shared<std::string>();
+  add_max_memory_option(cmd, max_memory);
+  return {cmd, [o, invocation, max_memory]() {
+            apply_max_memory(*max_memory);
             // Cheap checks of the command line first, before reading any file.
             if (!std::isfinite(o->at))
               throw InputError("", "--at", "must be a finite time in seconds");
@@ -72,7 +97,7 @@ Command add_render_command(CLI::App& app, const Invocation& invocation) {
             options.progress = [&](const RenderProgress& p) { progress.update(p); };
             options.on_masks = warn_about_blind_sensors;
             options.on_frame = [&](const RenderedFrame& frame) { writer.write_frame(frame); };
-            const SequenceResult result = render_sequence(scene, times, options);
+            const SequenceResult result = render_or_keep_frames(scene, times, options, writer);
             progress.finish();
             writer.finish(result);
             if (o->json) {

@@ -8,6 +8,7 @@
 #include <optional>
 
 #include "commands.h"
+#include "memory_option.h"
 #include "obscura/core/data_directory.h"
 #include "obscura/core/error.h"
 #include "obscura/validation/validation_cases.h"
@@ -219,7 +220,10 @@ Command add_validate_command(CLI::App& app) {
       "single-scatter, puff-transmittance, or all) against their known answers");
   auto o = std::make_shared<ValidateOptions>();
   add_options(cmd, o.get());
-  return {cmd, [o]() {
+  auto max_memory = std::make_shared<std::string>();
+  add_max_memory_option(cmd, max_memory);
+  return {cmd, [o, max_memory]() {
+            apply_max_memory(*max_memory);
             std::optional<SlabReference> slab_reference;
             const std::vector<ValidationRow> rows = run_cases(*o, slab_reference);
             const bool ok = std::all_of(rows.begin(), rows.end(),

@@ -1,6 +1,7 @@
 // `obscura render --time A:B:STEP` on an animated cloud: numbered frames, the
 // region time series, and a frame bit-identical to a single render at its time.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cstring>
@@ -128,6 +129,64 @@ TEST_F(RenderSequenceTest, BadTimeRangeIsAnError) {
     EXPECT_NE(r.err.find("--time"), std::string::npos) << r.err;
     EXPECT_FALSE(fs::exists(dir_ / "bad")) << bad;
   }
+}
+
+// A sequence whose second frame meets a corrupt keyframe keeps frame 0 (whole)
+// and writes summary.json with the failure and the frames done; before, it
+// exited 1 leaving the frames and no summary.
+TEST_F(RenderSequenceTest, FailurePartWayKeepsCompletedFramesAndASummary) {
+  fs::resize_file(dir_ / "k1.vdb", 100);
+  const auto out = dir_ / "seq";
+  const auto r = testing::run_cli("render " + (dir_ / "scene.json").string() + " -o " +
+                                      out.string() + " --time 0:3:1.5 --threads 2",
+                                  dir_);
+  EXPECT_EQ(r.status, 1) << r.err;
+  EXPECT_EQ(r.err.rfind("obscura: error: ", 0), 0u) << r.err;
+  EXPECT_NE(r.err.find("k1.vdb"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("kept the 1 completed frames 0–0 and summary.json"), std::string::npos)
+      << r.err;
+  EXPECT_TRUE(fs::exists(out / "ir_f0000.exr"));
+  EXPECT_TRUE(fs::exists(out / "ir_lwir_radiance_f0000.png"));
+  EXPECT_FALSE(fs::exists(out / "ir_f0001.exr"));
+  const auto summary = nlohmann::json::parse(testing::read_text_file(out / "summary.json"));
+  EXPECT_EQ(summary["failed"]["frames_completed"], nlohmann::json({0}));
+  EXPECT_EQ(summary["failed"]["frames_planned"], 3);
+  EXPECT_NE(summary["failed"]["error"].get<std::string>().find("k1.vdb"), std::string::npos);
+  for (const auto& e : fs::directory_iterator(out))
+    EXPECT_NE(e.path().filename().string()[0], '.') << "temporary left: " << e.path();
+}
+
+// Temporaries of a killed run (its pid no longer alive) are removed by the
+// next run in the folder; those of a live run are left alone.
+TEST_F(RenderSequenceTest, NextRunRemovesAKilledRunsTemporaries) {
+  const auto out = dir_ / "seq";
+  fs::create_directories(out / ".x.partial-999999999");
+  std::ofstream(out / ".ir_f0000.exr.tmp-999999999-3") << "half a file";
+  const std::string live = ".mine.exr.tmp-" + std::to_string(::getpid()) + "-0";
+  std::ofstream(out / live) << "being written";
+  const auto r = testing::run_cli(
+      "render " + (dir_ / "scene.json").string() + " -o " + out.string() + " --at 0 --threads 2",
+      dir_);
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_FALSE(fs::exists(out / ".x.partial-999999999"));
+  EXPECT_FALSE(fs::exists(out / ".ir_f0000.exr.tmp-999999999-3"));
+  EXPECT_TRUE(fs::exists(out / live));
+}
+
+// An output name taken by a folder is refused before rendering: nothing else
+// is written (before, ir.exr was left behind).
+TEST_F(RenderSequenceTest, OutputNameTakenByAFolderLeavesNothing) {
+  const auto out = dir_ / "seq";
+  fs::create_directories(out / "ir_lwir_radiance.png");
+  const auto r = testing::run_cli(
+      "render " + (dir_ / "scene.json").string() + " -o " + out.string() + " --at 0", dir_);
+  EXPECT_EQ(r.status, 1) << r.err;
+  EXPECT_NE(r.err.find("ir_lwir_radiance.png: is a folder where obscura writes a file"),
+            std::string::npos)
+      << r.err;
+  std::vector<std::string> left;
+  for (const auto& e : fs::directory_iterator(out)) left.push_back(e.path().filename());
+  EXPECT_EQ(left, std::vector<std::string>{"ir_lwir_radiance.png"});
 }
 
 }  // namespace

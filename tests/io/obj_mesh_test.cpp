@@ -152,6 +152,17 @@ TEST_F(ObjMesh, FaceIndexOutOfRange) {
   expect_error("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n", "", "line 4");
 }
 
+// tinyobjloader's int arithmetic wrapped 99999999999999 to 276447231: an index
+// beyond int's range is refused before it parses, in every slot of a corner.
+TEST_F(ObjMesh, FaceIndexBeyondIntRangeIsAnErrorNotWrapped) {
+  const std::string tri = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+  expect_error(tri + "f 1 2 99999999999999\n", "line 4", "'99999999999999' is out of range");
+  expect_error(tri + "f 1 2 2147483648\n", "line 4", "'2147483648' is out of range");
+  expect_error(tri + "f 1 2 -99999999999999999999\n", "line 4", "is out of range");
+  expect_error(tri + "vn 0 0 1\nf 1//1 2//1 3//99999999999\n", "line 5", "is out of range");
+  expect_error(tri + "f 1 2 x\n", "line 4", "'x' is not an integer");
+}
+
 TEST_F(ObjMesh, FaceWithTooFewVertices) {
   expect_error("v 0 0 0\nv 1 0 0\nf 1 2\n", "line 3", "at least 3 vertices");
 }

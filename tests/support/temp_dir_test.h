@@ -14,9 +14,12 @@ class TempDirTest : public ::testing::Test {
  protected:
   void SetUp() override {
     const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = std::filesystem::temp_directory_path() /
-           (std::string("obscura_") + info->test_suite_name() + "_" + info->name() + "_" +
-            std::to_string(::getpid()));
+    // Parameterised tests have "/" in their names: one flat folder each.
+    std::string name = std::string("obscura_") + info->test_suite_name() + "_" + info->name() +
+                       "_" + std::to_string(::getpid());
+    for (char& c : name)
+      if (c == '/') c = '_';
+    dir_ = std::filesystem::temp_directory_path() / name;
     std::filesystem::remove_all(dir_);
     std::filesystem::create_directories(dir_);
   }

@@ -4,36 +4,24 @@
 
 #include <cerrno>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <fstream>
+#include <limits>
 #include <sstream>
+
+#include "obscura/io/input_file.h"
+#include "obscura/io/json_document.h"
 
 namespace obscura {
 
 nlohmann::json read_json_file(const std::string& path) {
+  require_regular_file(path, "JSON");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, "", fmt::format("cannot read file: {}", std::strerror(errno)));
   std::stringstream buffer;
   buffer << in.rdbuf();
-  const std::string text = buffer.str();
-  try {
-    return nlohmann::json::parse(text);
-  } catch (const nlohmann::json::parse_error& e) {
-    // Convert the byte offset into line:column for the message.
-    std::size_t line = 1, column = 1;
-    for (std::size_t i = 0; i + 1 < e.byte && i < text.size(); ++i) {
-      if (text[i] == '\n') {
-        ++line;
-        column = 1;
-      } else {
-        ++column;
-      }
-    }
-    std::string what = e.what();
-    const auto pos = what.find("syntax error");
-    throw InputError(path, fmt::format("line {} column {}", line, column),
-                     "invalid JSON: " + (pos == std::string::npos ? what : what.substr(pos)));
-  }
+  return parse_json_document(buffer.str(), path);
 }
 
 namespace {
@@ -93,6 +81,10 @@ long long JsonObject::integer(const std::string& key) {
   const auto& v = get(key);
   if (!v.is_number_integer())
     throw error(key, fmt::format("expected an integer, found {}", v.dump()));
+  // Above 2^63 - 1 nlohmann keeps an unsigned value, which get<long long> would wrap.
+  if (v.is_number_unsigned() &&
+      v.get<std::uint64_t>() > static_cast<std::uint64_t>(std::numeric_limits<long long>::max()))
+    throw error(key, fmt::format("integer {} is out of range", v.dump()));
   return v.get<long long>();
 }
 

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "obscura/core/error.h"
+#include "obscura/core/memory_limit.h"
 #include "obscura/io/netcdf_cf.h"
 #include "obscura/io/netcdf_cf_axes.h"
 #include "obscura/io/netcdf_cf_data_variable.h"
@@ -62,18 +63,16 @@ std::uint64_t check_memory(const NcReader& r, const std::array<AxisInfo, 4>& axe
       __builtin_mul_overflow(voxels, static_cast<std::uint64_t>(axes[kT].len) * channels * 4,
                              &grid_bytes) ||
       __builtin_add_overflow(grid_bytes, voxels * 8, &total);
-  const std::uint64_t available = available_memory_bytes();
-  if (overflow || total > available)
+  if (overflow || total > memory_limit_bytes())
     r.fail(
         opt.concentration,
-        fmt::format("{} time steps of {} x {} x {} voxels ({} {}) need {:.3g} GiB but only "
-                    "{:.3g} GiB of memory is available",
+        fmt::format("{} time steps of {} x {} x {} voxels ({} {}) need {:.3g} GiB but only {}",
                     axes[kT].len, axes[kX].len, axes[kY].len, axes[kZ].len, channels,
                     channels == 1 ? "variable" : "variables",
                     static_cast<double>(axes[kX].len) * static_cast<double>(axes[kY].len) *
                         static_cast<double>(axes[kZ].len) *
                         (4.0 * static_cast<double>(channels * axes[kT].len) + 8.0) / 1073741824.0,
-                    available / 1073741824.0));
+                    memory_limit_text()));
   return voxels;
 }
 

@@ -4,8 +4,10 @@
 #include <tiny_obj_loader.h>
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <istream>
+#include <limits>
 #include <streambuf>
 #include <string_view>
 #include <vector>
@@ -37,6 +39,33 @@ bool keyword_line(std::string_view line, char keyword, std::string_view& args) {
   return true;
 }
 
+// tinyobjloader reads an index with int arithmetic that wraps (99999999999999
+// became 276447231): every index of a face corner ("v", "v/vt", "v//vn",
+// "v/vt/vn") must be an integer within int's range before it sees them.
+void check_face_corner(std::string_view corner, const std::string& file, const std::string& field) {
+  std::size_t start = 0;
+  while (start <= corner.size()) {
+    const std::size_t slash = std::min(corner.find('/', start), corner.size());
+    const std::string_view number = corner.substr(start, slash - start);
+    if (!number.empty() || start == 0) {
+      long long value = 0;
+      const char* end = number.data() + number.size();
+      const auto [ptr, ec] = std::from_chars(number.data(), end, value);
+      if (ec == std::errc::result_out_of_range ||
+          (ec == std::errc() && ptr == end &&
+           (value > std::numeric_limits<int>::max() || value < -std::numeric_limits<int>::max())))
+        throw InputError(file, field,
+                         fmt::format("face index '{}' is out of range (at most {})", number,
+                                     std::numeric_limits<int>::max()));
+      if (number.empty() || ec != std::errc() || ptr != end)
+        throw InputError(
+            file, field,
+            fmt::format("face corner '{}': index '{}' is not an integer", corner, number));
+    }
+    start = slash + 1;
+  }
+}
+
 // tinyobjloader reads a coordinate that is not a number as 0 and ignores
 // oversized files until memory runs out: one cheap pass first checks every
 // vertex and counts the faces and triangles.
@@ -61,7 +90,9 @@ void prescan(const std::string& text, const std::string& file) {
           throw InputError(file, field, fmt::format("vertex coordinate '{}' is not finite", t[k]));
       }
     } else if (keyword_line(line, 'f', args)) {
-      const std::size_t n = tokens(args).size();
+      const auto face = tokens(args);
+      const std::size_t n = face.size();
+      for (const std::string_view corner : face) check_face_corner(corner, file, field);
       if (n < 3)
         throw InputError(file, field,
                          fmt::format("a face needs at least 3 vertices, this one has {}", n));

@@ -8,15 +8,15 @@
 #include <system_error>
 
 #include "obscura/core/error.h"
+#include "obscura/io/input_file.h"
 
 namespace obscura {
 
 std::string read_text_file(const std::filesystem::path& path, std::uintmax_t max_bytes,
                            std::string_view what) {
   const std::string file = path.string();
+  require_regular_file(path, what);
   std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec))
-    throw InputError(file, "", fmt::format("cannot open {}: no such file", what));
   const std::uintmax_t size = std::filesystem::file_size(path, ec);
   if (ec) throw InputError(file, "", fmt::format("cannot open {}: {}", what, ec.message()));
   if (size > max_bytes)

@@ -12,6 +12,7 @@
 #include "obscura/io/vdb_keyframe_forms.h"
 #include "obscura/io/vdb_keyframe_layout.h"
 #include "obscura/io/vdb_keyframe_metadata.h"
+#include "obscura/io/vdb_stream_check.h"
 
 namespace obscura {
 namespace {
@@ -41,6 +42,10 @@ ReadResult read_keyframe(const std::filesystem::path& path, bool keep_species) {
   if (!std::filesystem::is_regular_file(path, ec))
     throw InputError(file, "",
                      std::filesystem::exists(path, ec) ? "is not a regular file" : "no such file");
+
+  // Every length and offset against the file's size first: OpenVDB allocates
+  // what a truncated file's garbage says (vdb_stream_check.h).
+  vdb_format::check_vdb_stream(path);
 
   openvdb::io::File f(file);
   try {

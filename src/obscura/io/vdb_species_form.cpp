@@ -7,6 +7,8 @@
 #include <nlohmann/json.hpp>
 
 #include "obscura/core/error.h"
+#include "obscura/core/memory_limit.h"
+#include "obscura/io/json_document.h"
 #include "obscura/io/json_reader.h"
 #include "obscura/io/vdb_keyframe.h"
 #include "obscura/io/vdb_keyframe_forms.h"
@@ -26,9 +28,9 @@ std::vector<SpeciesOptics> parse_species_optics(const std::string& text, std::si
                                                 const std::string& file) {
   nlohmann::json doc;
   try {
-    doc = nlohmann::json::parse(text);
-  } catch (const nlohmann::json::parse_error& e) {
-    throw InputError(file, "species_optics", fmt::format("is not valid JSON ({})", e.what()));
+    doc = parse_json_document(text, file);
+  } catch (const InputError& e) {
+    throw InputError(file, "species_optics", fmt::format("is not valid JSON ({})", e.detail()));
   }
   if (!doc.is_array())
     throw InputError(file, "species_optics", "must be a JSON array with one object per species");
@@ -72,14 +74,14 @@ void check_species_memory(const CommonHeader& h, std::size_t ns, const std::stri
   std::uint64_t compact = 0;
   if (__builtin_mul_overflow(static_cast<std::uint64_t>(h.dims.count()),
                              static_cast<std::uint64_t>((ns + 1) * sizeof(float)), &compact) ||
-      expanded + compact < expanded || expanded + compact > available_memory_bytes())
+      expanded + compact < expanded || expanded + compact > memory_limit_bytes())
     throw InputError(
         file, "dims",
         fmt::format("grid {}x{}x{} with {} species and {} wavelengths needs {:.3g} "
-                    "GiB but only {:.3g} GiB of memory is available",
+                    "GiB but only {}",
                     h.dims.nx, h.dims.ny, h.dims.nz, ns, h.wavelengths_um.size(),
                     (static_cast<double>(expanded) + static_cast<double>(compact)) / 1073741824.0,
-                    available_memory_bytes() / 1073741824.0));
+                    memory_limit_text()));
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "obscura/core/error.h"
+#include "obscura/core/memory_limit.h"
 
 namespace obscura::vtk_legacy {
 
@@ -71,15 +72,14 @@ void ArrayReader::check_memory(const ArrayDecl& a, std::uint64_t count) const {
   std::uint64_t bytes = 0, already = 0;
   if (concentration_) already += concentration_->values.size() * sizeof(float);
   if (temperature_) already += temperature_->values.size() * sizeof(float);
-  if (__builtin_mul_overflow(count, sizeof(float), &bytes) || bytes > available_memory_bytes()) {
+  if (__builtin_mul_overflow(count, sizeof(float), &bytes) ||
+      bytes + already > memory_limit_bytes()) {
     const GridDims& d = *geometry_.dims();
     tokens_.fail(
         a.at,
-        fmt::format("{} on DIMENSIONS {} {} {} needs {:.3g} GiB but only {:.3g} GiB of "
-                    "memory is available{}",
-                    a.describe(), d.nx, d.ny, d.nz,
-                    static_cast<double>(count) * sizeof(float) / 1073741824.0,
-                    available_memory_bytes() / 1073741824.0,
+        fmt::format("{} on DIMENSIONS {} {} {} needs {:.3g} GiB but only {}{}", a.describe(), d.nx,
+                    d.ny, d.nz, static_cast<double>(count) * sizeof(float) / 1073741824.0,
+                    memory_limit_text(),
                     already > 0 ? fmt::format(" ({:.3g} GiB already read)", already / 1073741824.0)
                                 : std::string()));
   }

@@ -8,23 +8,9 @@
 #include <limits>
 
 #include "obscura/core/error.h"
+#include "obscura/core/memory_limit.h"
 
 namespace obscura {
-
-std::uint64_t available_memory_bytes() {
-  std::ifstream meminfo("/proc/meminfo");
-  std::string key;
-  std::uint64_t value = 0;
-  std::string unit;
-  while (meminfo >> key >> value >> unit) {
-    if (key == "MemAvailable:") return value * 1024;
-  }
-  const long pages = sysconf(_SC_AVPHYS_PAGES);
-  const long page_size = sysconf(_SC_PAGESIZE);
-  if (pages > 0 && page_size > 0)
-    return static_cast<std::uint64_t>(pages) * static_cast<std::uint64_t>(page_size);
-  return std::numeric_limits<std::uint64_t>::max();
-}
 
 std::size_t VoxelGrid::checked_storage_bytes(GridDims dims, int spectral_count,
                                              const std::string& source) {
@@ -44,14 +30,8 @@ std::size_t VoxelGrid::checked_storage_bytes(GridDims dims, int spectral_count,
     throw InputError(source, "dims",
                      fmt::format("grid {}x{}x{} with {} channels overflows a 64-bit size", dims.nx,
                                  dims.ny, dims.nz, channels));
-  const std::uint64_t available = available_memory_bytes();
-  if (bytes > available)
-    throw InputError(
-        source, "dims",
-        fmt::format("grid {}x{}x{} with {} channels needs {:.3g} GiB but only {:.3g} GiB "
-                    "of memory is available",
-                    dims.nx, dims.ny, dims.nz, channels, bytes / 1073741824.0,
-                    available / 1073741824.0));
+  check_memory(bytes, source, "dims",
+               fmt::format("grid {}x{}x{} with {} channels", dims.nx, dims.ny, dims.nz, channels));
   return static_cast<std::size_t>(bytes);
 }
 

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "obscura/core/bbox.h"
+#include "obscura/core/memory_limit.h"
 #include "obscura/medium/grid_placement.h"
 
 namespace obscura {
@@ -83,9 +84,5 @@ class VoxelGrid {
   std::vector<double> wavelengths_um_;
   std::vector<float> data_;
 };
-
-// Physical memory currently available to this process (bytes), from
-// /proc/meminfo MemAvailable, or sysconf if that is missing.
-std::uint64_t available_memory_bytes();
 
 }  // namespace obscura

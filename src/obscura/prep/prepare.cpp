@@ -12,6 +12,7 @@
 #include "obscura/io/cloud_manifest.h"
 #include "obscura/io/json_reader.h"
 #include "obscura/io/netcdf_cf.h"
+#include "obscura/io/stale_temporaries.h"
 #include "obscura/io/vdb_keyframe.h"
 #include "obscura/io/vtk_structured_points.h"
 #include "obscura/optics/material.h"
@@ -262,6 +263,7 @@ void write_cloud(const std::filesystem::path& out_dir, const Concentrations& c,
   const ConcentrationSeries& series = c.series;
   const fs::path parent = out_dir.parent_path().empty() ? fs::path(".") : out_dir.parent_path();
   fs::create_directories(parent);
+  remove_stale_temporaries(parent);  // a killed prepare's ".<name>.partial-<pid>"
   const fs::path temp =
       parent / fmt::format(".{}.partial-{}", out_dir.filename().string(), ::getpid());
   fs::remove_all(temp);

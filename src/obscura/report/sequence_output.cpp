@@ -5,8 +5,10 @@
 #include <algorithm>
 #include <cmath>
 
+#include "obscura/core/error.h"
 #include "obscura/core/parallel.h"
 #include "obscura/io/atomic_file.h"
+#include "obscura/io/stale_temporaries.h"
 #include "obscura/report/render_output.h"
 #include "obscura/report/screening_output.h"
 
@@ -125,6 +127,25 @@ nlohmann::json sensor_frame_json(const SensorFrameStats& s, const std::string& e
   return j;
 }
 
+// A folder where a file is to be written would fail only after the render,
+// with part of a frame on disk: refuse it before anything is rendered. Every
+// output is an .exr, .png, .csv or .json file directly in the folder.
+void check_no_folder_takes_an_output_name(const std::filesystem::path& dir) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (fs::exists(dir, ec) && !fs::is_directory(dir, ec))
+    throw InputError(dir.string(), "", "the output folder's name is taken by a file");
+  fs::directory_iterator it(dir, ec);
+  if (ec) return;  // missing: created when the first file is written
+  for (const fs::directory_entry& e : it) {
+    const std::string ext = e.path().extension().string();
+    if (e.is_directory(ec) && (ext == ".exr" || ext == ".png" || ext == ".csv" || ext == ".json"))
+      throw InputError(e.path().string(), "",
+                       "is a folder where obscura writes a file: move it or choose another "
+                       "output folder");
+  }
+}
+
 }  // namespace
 
 SequenceWriter::SequenceWriter(std::filesystem::path dir, const Scene& scene,
@@ -143,6 +164,8 @@ SequenceWriter::SequenceWriter(std::filesystem::path dir, const Scene& scene,
   for (const Sensor& sensor : scene.sensors)
     for (const Band& band : sensor.bands)
       sheet_.rows.push_back(sheet_row(sensor, band, sheet_frames_.size()));
+  check_no_folder_takes_an_output_name(dir_);
+  remove_stale_temporaries(dir_);
   summary_ = {{"provenance", provenance_.to_json()},
               {"scene", scene.source},
               {"threads", resolve_thread_count(scene.settings.threads)},
@@ -166,6 +189,17 @@ void SequenceWriter::write_frame(const RenderedFrame& frame) {
     }
   }
   frame_files_ = written_.size();
+  frames_done_.push_back(frame.index);
+}
+
+void SequenceWriter::finish_failed(const std::string& error) {
+  summary_["failed"] = {
+      {"error", error}, {"frames_completed", frames_done_}, {"frames_planned", times_s_.size()}};
+  summary_["outputs"] = nlohmann::json::array();
+  for (const auto& p : written_) summary_["outputs"].push_back(p.string());
+  const auto summary_path = dir_ / "summary.json";
+  write_text_file_atomic(summary_path, summary_.dump(2) + "\n");
+  written_.push_back(summary_path);
 }
 
 void SequenceWriter::write_contact_sheet() {

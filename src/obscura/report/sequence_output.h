@@ -11,7 +11,9 @@
 //  * summary.json: provenance, the scene, per frame and sensor the figures and
 //    timings, the screening summary, units.
 // Frames are written as the runner hands them over (write_frame), the rest by
-// finish(). Every file goes through an AtomicFile (temporary name, rename).
+// finish(), or by finish_failed() when a frame fails. Every file goes through
+// an AtomicFile (temporary name, rename); temporaries that killed runs left in
+// the folder are removed when a writer is made (io/stale_temporaries.h).
 #include <cstddef>
 #include <filesystem>
 #include <nlohmann/json.hpp>
@@ -35,6 +37,11 @@ class SequenceWriter {
   void write_frame(const RenderedFrame& frame);
   // The time series, contact sheet, metrics, plots, masks and summary.json.
   void finish(const SequenceResult& result);
+  // After a failure part-way: summary.json records the error and the frames
+  // that completed (their files stay: each was written whole, atomically).
+  void finish_failed(const std::string& error);
+  // The frames written so far, in order.
+  const std::vector<std::size_t>& frames_done() const { return frames_done_; }
 
   const std::filesystem::path& dir() const { return dir_; }
   // summary.json's content, plus "outputs" (every file written).
@@ -61,6 +68,7 @@ class SequenceWriter {
   nlohmann::json summary_;
   std::vector<std::filesystem::path> written_;
   std::size_t frame_files_ = 0;
+  std::vector<std::size_t> frames_done_;
   std::string metrics_text_;
 };
 

@@ -5,9 +5,11 @@
 #include <fmt/ranges.h>
 
 #include <cmath>
+#include <cstdint>
 #include <optional>
 #include <set>
 
+#include "obscura/core/memory_limit.h"
 #include "obscura/io/cloud_manifest.h"
 #include "obscura/io/json_reader.h"
 #include "obscura/io/obj_mesh.h"
@@ -64,6 +66,8 @@ std::filesystem::path input_file(JsonObject& o, const std::string& key,
                                  Scene& scene) {
   std::filesystem::path file = o.string(key);
   if (file.is_relative()) file = base / file;
+  if (std::filesystem::is_directory(file))
+    throw o.error(key, fmt::format("'{}' is a folder, expected a {} file", file.string(), what));
   if (!std::filesystem::is_regular_file(file))
     throw o.error(key, fmt::format("cannot open {} '{}': no such file", what, file.string()));
   scene.input_files.push_back(file);
@@ -231,6 +235,13 @@ Sensor parse_sensor(JsonObject o, int index) {
       throw InputError(o.file(), path,
                        fmt::format("duplicate band name '{}'", s.bands.back().name()));
   }
+  // The images the render fills (film/sensor_image.h): per band radiance,
+  // transmittance, apparent temperature and standard error, and the samples
+  // per pixel; 16384² × 64 bands took 7.4 GB before failing in bad_alloc.
+  const auto bytes = checked_product({static_cast<std::uint64_t>(w), static_cast<std::uint64_t>(h),
+                                      4 * sizeof(float) * s.bands.size() + sizeof(std::uint32_t)});
+  check_memory(bytes.value_or(UINT64_MAX), o.file(), o.path_of("bands"),
+               fmt::format("a {}x{} image with {} bands", w, h, s.bands.size()));
   o.finish();
   return s;
 }
@@ -307,6 +318,24 @@ PixelRegion parse_region(JsonObject o, const Scene& scene) {
   return r;
 }
 
+// A photon map stores at least one photon per launched photon that meets the
+// cloud, 28 bytes each (render/photon_map/photon.h), for every spectral node
+// of every band of every sensor: refuse a count that cannot fit before tracing.
+void check_photon_memory(const Scene& scene, const JsonObject& root) {
+  if (scene.settings.method != RenderMethod::kPhotonMap) return;
+  constexpr std::uint64_t kPhotonBytes = 28;
+  std::uint64_t bands = 0;
+  for (const Sensor& s : scene.sensors) bands += s.bands.size();
+  const auto bytes = checked_product(
+      {static_cast<std::uint64_t>(scene.settings.photon_map.photons_per_node),
+       static_cast<std::uint64_t>(scene.settings.spectral_nodes_per_band), bands, kPhotonBytes});
+  check_memory(bytes.value_or(UINT64_MAX), root.file(), "/render/photon_map/photons",
+               fmt::format("{} photons per node over {} spectral nodes in {} bands (28 bytes per "
+                           "stored photon)",
+                           scene.settings.photon_map.photons_per_node,
+                           scene.settings.spectral_nodes_per_band, bands));
+}
+
 }  // namespace
 
 Scene parse_scene(const nlohmann::json& doc, const std::filesystem::path& file) {
@@ -315,6 +344,18 @@ Scene parse_scene(const nlohmann::json& doc, const std::filesystem::path& file) 
   JsonObject root(doc, fname, "");
   Scene scene;
   scene.source = doc;
+  // First: every size below is checked against it. --max-memory, set before
+  // the scene is read, wins (core/memory_limit.h).
+  if (root.has("max_memory")) {
+    const std::string text = root.string("max_memory");
+    const auto bytes = parse_memory_size(text);
+    if (!bytes)
+      throw root.error("max_memory",
+                       fmt::format("'{}' is not a memory size (expected e.g. \"4GiB\" or "
+                                   "\"500MB\")",
+                                   text));
+    set_memory_limit(*bytes, MemoryLimitSource::kScene);
+  }
 
   const auto& sensors = root.array("sensors");
   if (sensors.empty()) throw root.error("sensors", "needs at least one sensor");
@@ -357,6 +398,7 @@ Scene parse_scene(const nlohmann::json& doc, const std::filesystem::path& file) 
   if (auto m = root.optional_object("metrics")) scene.metrics = parse_metrics_settings(*m);
   if (auto sun = root.optional_object("sun")) scene.sun = parse_sun(*sun);
   if (auto r = root.optional_object("render")) scene.settings = parse_render_settings(*r);
+  check_photon_memory(scene, root);
   if (scene.sun.enabled && !method_scatters(scene.settings.method))
     throw root.error(
         "sun",

@@ -10,6 +10,7 @@
 
 #include "obscura/core/bbox.h"
 #include "obscura/core/error.h"
+#include "obscura/core/memory_limit.h"
 #include "obscura/core/parallel.h"
 
 namespace obscura {
@@ -212,14 +213,13 @@ std::size_t dispersion_series_checked_bytes(const DispersionGridLayout& layout,
                      fmt::format("{} frames of a {}x{}x{} grid overflow a 64-bit size; use a "
                                  "larger voxel or fewer frames",
                                  frame_count, d.nx, d.ny, d.nz));
-  const std::uint64_t available = available_memory_bytes();
-  if (bytes > available)
+  if (bytes > memory_limit_bytes())
     throw InputError(source, "voxel_size_m",
                      fmt::format("{} frames of a {}x{}x{} grid ({} m voxels, concentration and "
-                                 "temperature) need {:.3g} GiB but only {:.3g} GiB of memory is "
-                                 "available; use a larger voxel or fewer frames",
+                                 "temperature) need {:.3g} GiB but only {}; use a larger voxel "
+                                 "or fewer frames",
                                  frame_count, d.nx, d.ny, d.nz, layout.placement.voxel_size_m,
-                                 bytes / 1073741824.0, available / 1073741824.0));
+                                 bytes / 1073741824.0, memory_limit_text()));
   return static_cast<std::size_t>(bytes);
 }
 
