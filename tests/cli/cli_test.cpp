@@ -229,7 +229,7 @@ TEST_F(CliTest, UnreadableFileFails) {
   const testing::CliResult r = run("info " + (dir_ / "nope.vdb").string());
   EXPECT_NE(r.status, 0);
   EXPECT_NE(r.err.find("nope.vdb"), std::string::npos) << r.err;
-  expect_render_error(dir_ / "absent.json", "absent.json", "cannot read");
+  expect_render_error(dir_ / "absent.json", "absent.json", "no such file");
 }
 
 }  // namespace
