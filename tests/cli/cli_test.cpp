@@ -14,6 +14,7 @@
 #include "obscura/medium/gaussian_puff.h"
 #include "support/cli_runner.h"
 #include "support/temp_dir_test.h"
+#include "support/test_puff.h"
 
 namespace fs = std::filesystem;
 
@@ -42,15 +43,7 @@ class CliTest : public testing::TempDirTest {
             {"sky", {{"temperature", 250}}}};
   }
   fs::path write_puff(const std::string& name) {
-    GaussianPuffSpec spec;
-    spec.center_m = {0, 0, 3};
-    spec.radius_m = 2;
-    spec.resolution = 16;
-    spec.wavelengths_um = {4, 10};
-    spec.peak_sigma_a = {0.5, 0.6};
-    spec.peak_sigma_s = {0.2, 0.1};
-    spec.g = {0.5, 0.3};
-    spec.temperature_excess_k = 10;
+    const GaussianPuffSpec spec = testing::small_puff_spec();
     const auto p = dir_ / name;
     write_cloud_keyframe(p, make_gaussian_puff(spec), 0.0);
     return p;
