@@ -6,6 +6,8 @@
 #include <functional>
 #include <string>
 
+#include "obscura/core/process_group.h"
+
 namespace obscura::cli {
 
 using Runner = std::function<int()>;
@@ -15,9 +17,11 @@ struct Command {
   Runner run;
 };
 
-// The full command line, recorded in provenance.
+// The full command line, recorded in provenance, and the processes the run
+// is shared among (one without an MPI launcher; cluster/process_world.h).
 struct Invocation {
   std::string command_line;
+  const ProcessGroup* processes = &single_process();
 };
 
 Command add_info_command(CLI::App& app);

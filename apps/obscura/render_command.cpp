@@ -49,6 +49,14 @@ SequenceResult render_or_keep_frames(Scene& scene, const std::vector<double>& ti
   }
 }
 
+// One line per frame (or share of a frame) a rank has rendered, for runs
+// shared among MPI ranks, where one rewritten progress line would mix ranks.
+void print_rendered(const FrameRendered& r) {
+  std::cerr << fmt::format("obscura: rank {}/{}: {} {}/{} (t = {:.4g} s) in {:.1f} s\n", r.rank,
+                           r.ranks, r.by_tiles ? "rows of frame" : "frame", r.frame + 1, r.frames,
+                           r.time_s, r.seconds);
+}
+
 }  // namespace
 
 Command add_render_command(CLI::App& app, const Invocation& invocation) {
@@ -60,12 +68,14 @@ Command add_render_command(CLI::App& app, const Invocation& invocation) {
     std::optional<std::uint64_t> seed;
     double at = 0.0;
     std::string time_range;
+    std::string share = "auto";
     bool json = false;
   };
   auto o = std::make_shared<Options>();
   cmd->add_option("scene", o->scene, "Scene file (JSON, docs/formats.md)")->required();
   cmd->add_option("-o,--output", o->output, "Output folder (created if missing)")->required();
-  cmd->add_option("--threads", o->threads, "Worker threads (default: the scene's, 0 = all cores)")
+  cmd->add_option("--threads", o->threads,
+                  "Worker threads (per MPI rank; default: the scene's, 0 = all cores)")
       ->check(CLI::Range(0, 4096));
   cmd->add_option("--seed", o->seed, "Random seed for pixel jitter (default: the scene's)");
   auto* at = cmd->add_option("--at", o->at, "Scene time to render, seconds (default 0)");
@@ -74,10 +84,19 @@ Command add_render_command(CLI::App& app, const Invocation& invocation) {
                   "per frame, time_series.csv with region means, contact_sheet.png, and with a "
                   "target surface screening metrics and their plots (docs/metrics.md)")
       ->excludes(at);
+  cmd->add_option("--share", o->share,
+                  "Under mpirun, how ranks share the work: frames (every N-th frame each), tiles "
+                  "(every N-th row of each frame, and its photons) or auto (frames when there are "
+                  "at least as many frames as ranks); outputs are the same bits whatever the "
+                  "choice (docs/cluster.md)")
+      ->check(CLI::IsMember({"auto", "frames", "tiles"}))
+      ->capture_default_str();
   cmd->add_flag("--json", o->json, "Print a JSON summary on stdout");
   auto max_memory = std::make_shared<std::string>();
   add_max_memory_option(cmd, max_memory);
   return {cmd, [o, invocation, max_memory]() {
+            const ProcessGroup& processes = *invocation.processes;
+            const bool root = processes.is_root();
             apply_max_memory(*max_memory);
             // Cheap checks of the command line first, before reading any file.
             if (!std::isfinite(o->at))
@@ -85,27 +104,44 @@ Command add_render_command(CLI::App& app, const Invocation& invocation) {
             const bool sequence = !o->time_range.empty();
             const std::vector<double> times =
                 sequence ? parse_time_range(o->time_range) : std::vector<double>{o->at};
-            Scene scene = load_scene(o->scene);
-            if (o->threads) scene.settings.threads = *o->threads;
-            if (o->seed) scene.settings.seed = *o->seed;
-            SequenceWriter writer(
-                o->output, scene, times, sequence,
-                make_provenance(invocation.command_line, scene.settings.seed, scene.input_files),
-                std::filesystem::path(o->scene).filename().string());
+            // Every rank loads the scene; rank 0 alone makes the output folder.
+            // A failure is shared, so that rank 0 reports it once.
+            Scene scene;
+            std::optional<SequenceWriter> writer;
+            run_together(processes, [&] {
+              scene = load_scene(o->scene);
+              if (o->threads) scene.settings.threads = *o->threads;
+              if (o->seed) scene.settings.seed = *o->seed;
+              if (root)
+                writer.emplace(o->output, scene, times, sequence,
+                               make_provenance(invocation.command_line, scene.settings.seed,
+                                               scene.input_files),
+                               std::filesystem::path(o->scene).filename().string());
+            });
             ProgressPrinter progress(scene, sequence);
             SequenceOptions options;
-            options.progress = [&](const RenderProgress& p) { progress.update(p); };
+            options.processes = &processes;
+            options.sharing = parse_work_sharing(o->share);
+            if (processes.size() > 1)
+              options.on_rendered = print_rendered;
+            else
+              options.progress = [&](const RenderProgress& p) { progress.update(p); };
             options.on_masks = warn_about_blind_sensors;
-            options.on_frame = [&](const RenderedFrame& frame) { writer.write_frame(frame); };
-            const SequenceResult result = render_or_keep_frames(scene, times, options, writer);
+            options.on_frame = [&](const RenderedFrame& frame) { writer->write_frame(frame); };
+            if (!root) {
+              render_sequence(scene, times, options);
+              run_together(processes, [] {});  // rank 0 writes what remains
+              return 0;
+            }
+            const SequenceResult result = render_or_keep_frames(scene, times, options, *writer);
             progress.finish();
-            writer.finish(result);
+            run_together(processes, [&] { writer->finish(result); });
             if (o->json) {
-              nlohmann::json summary = writer.summary();
+              nlohmann::json summary = writer->summary();
               summary.erase("scene");
               std::cout << summary.dump(2) << "\n";
             } else {
-              std::cout << sequence_summary_text(writer);
+              std::cout << sequence_summary_text(*writer);
             }
             return 0;
           }};

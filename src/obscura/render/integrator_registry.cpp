@@ -1,6 +1,7 @@
 #include "obscura/render/integrator_registry.h"
 
 #include <string>
+#include <type_traits>
 
 #include "obscura/render/emission_absorption/emission_absorption_integrator.h"
 #include "obscura/render/path_tracer/path_tracer_integrator.h"
@@ -11,8 +12,12 @@ namespace obscura {
 namespace {
 
 template <typename T>
-std::unique_ptr<Integrator> make(const Scene& scene, const FrameSpectra& spectra) {
-  return std::make_unique<T>(scene, spectra);
+std::unique_ptr<Integrator> make(const Scene& scene, const FrameSpectra& spectra,
+                                 const ProcessGroup& processes) {
+  if constexpr (std::is_constructible_v<T, const Scene&, const FrameSpectra&, const ProcessGroup&>)
+    return std::make_unique<T>(scene, spectra, processes);
+  else
+    return std::make_unique<T>(scene, spectra);  // prepares nothing worth sharing
 }
 
 struct Entry {
@@ -36,8 +41,9 @@ IntegratorFactory integrator_factory(RenderMethod method) {
               std::string(render_method_name(method)) + "'");
 }
 
-std::unique_ptr<Integrator> make_integrator(const Scene& scene, const FrameSpectra& spectra) {
-  return integrator_factory(scene.settings.method)(scene, spectra);
+std::unique_ptr<Integrator> make_integrator(const Scene& scene, const FrameSpectra& spectra,
+                                            const ProcessGroup& processes) {
+  return integrator_factory(scene.settings.method)(scene, spectra, processes);
 }
 
 }  // namespace obscura

@@ -4,12 +4,16 @@
 // its name there and its factory here.
 #include <memory>
 
+#include "obscura/core/process_group.h"
 #include "obscura/render/integrator.h"
 
 namespace obscura {
 
+// `processes` share what a method prepares per frame (photon tracing); every
+// process of the group must make the integrator together.
 using IntegratorFactory = std::unique_ptr<Integrator> (*)(const Scene& scene,
-                                                          const FrameSpectra& spectra);
+                                                          const FrameSpectra& spectra,
+                                                          const ProcessGroup& processes);
 
 // The factory of `method`; throws Error for a method without one (a bug).
 IntegratorFactory integrator_factory(RenderMethod method);
@@ -17,6 +21,7 @@ IntegratorFactory integrator_factory(RenderMethod method);
 // The integrator of scene.settings.method, prepared for the staged scene and
 // `spectra` (photon tracing and the like happen here). The integrator keeps
 // references to both: they must outlive it.
-std::unique_ptr<Integrator> make_integrator(const Scene& scene, const FrameSpectra& spectra);
+std::unique_ptr<Integrator> make_integrator(const Scene& scene, const FrameSpectra& spectra,
+                                            const ProcessGroup& processes = single_process());
 
 }  // namespace obscura

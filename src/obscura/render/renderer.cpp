@@ -129,7 +129,9 @@ struct SensorRender {
   }
 };
 
-SensorImage empty_image(const Sensor& sensor, bool monte_carlo) {
+}  // namespace
+
+SensorImage blank_sensor_image(const Sensor& sensor, bool monte_carlo) {
   SensorImage image;
   image.sensor = sensor.name;
   image.width = sensor.camera.width();
@@ -143,7 +145,11 @@ SensorImage empty_image(const Sensor& sensor, bool monte_carlo) {
   return image;
 }
 
-}  // namespace
+int rendered_row_count(int height, const RenderOptions& options) {
+  OBSCURA_CHECK(options.row_stride >= 1 && options.row_offset >= 0 &&
+                options.row_offset < options.row_stride);
+  return std::max(0, (height - options.row_offset + options.row_stride - 1) / options.row_stride);
+}
 
 namespace {
 
@@ -156,13 +162,13 @@ SensorImage render(const Scene& scene, const Sensor& sensor, int sensor_index,
   const bool monte_carlo = method_is_monte_carlo(integrator.method());
   const SensorRender job{
       scene, sensor, integrator, bands, sensor_index, AirPath(scene, sensor, bands), monte_carlo};
-  SensorImage image = empty_image(sensor, monte_carlo);
-  const int width = image.width, height = image.height;
+  SensorImage image = blank_sensor_image(sensor, monte_carlo);
+  const int width = image.width, rows = rendered_row_count(image.height, options);
   std::atomic<std::uint64_t> segments{0}, evals{0}, samples_taken{0};
   std::atomic<int> rows_done{0};
 
-  parallel_for(static_cast<std::size_t>(height), scene.settings.threads, [&](std::size_t row) {
-    const int y = static_cast<int>(row);
+  parallel_for(static_cast<std::size_t>(rows), scene.settings.threads, [&](std::size_t row) {
+    const int y = options.row_offset + static_cast<int>(row) * options.row_stride;
     const std::unique_ptr<RayWorkspace> ws = integrator.make_workspace();
     PixelSums sums(bands.size());
     for (int x = 0; x < width; ++x) {
@@ -186,7 +192,7 @@ SensorImage render(const Scene& scene, const Sensor& sensor, int sensor_index,
     segments += ws->segments;
     evals += ws->integrand_evals;
     const int done = ++rows_done;
-    if (options.progress) options.progress(done, height);
+    if (options.progress) options.progress(done, rows);
   });
 
   const PreparationStats prep = integrator.preparation(sensor_index);

@@ -26,7 +26,18 @@ namespace obscura {
 struct RenderOptions {
   // Called as rows complete, with (rows done, rows total); may be called from any thread.
   std::function<void(int, int)> progress;
+  // Render only rows y with y mod row_stride == row_offset (a process's share
+  // of the image, sequence/distributed_frame.h); the other rows stay zero.
+  // A pixel's value does not depend on which rows are rendered.
+  int row_offset = 0, row_stride = 1;
 };
+
+// The rows of an image of `height` rows that `options` renders.
+int rendered_row_count(int height, const RenderOptions& options);
+
+// The image `sensor` renders into, zero everywhere: its bands, and a standard
+// error image when the method is Monte Carlo.
+SensorImage blank_sensor_image(const Sensor& sensor, bool monte_carlo);
 
 // Sensor `sensor` of the scene through an integrator made for `spectra`
 // (`spectra[sensor]` its bands' nodes). Threads and seed: scene.settings.

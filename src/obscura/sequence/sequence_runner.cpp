@@ -5,9 +5,13 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <optional>
 
+#include "obscura/core/byte_stream.h"
 #include "obscura/core/error.h"
+#include "obscura/film/sensor_image_rows.h"
 #include "obscura/render/renderer.h"
+#include "obscura/sequence/frame_message.h"
 
 namespace obscura {
 namespace {
@@ -74,59 +78,190 @@ std::vector<TargetMask> scene_target_masks(const Scene& scene) {
   return masks;
 }
 
+WorkSharing parse_work_sharing(const std::string& text, const std::string& field) {
+  for (WorkSharing w : {WorkSharing::kAuto, WorkSharing::kFrames, WorkSharing::kTiles})
+    if (text == work_sharing_name(w)) return w;
+  throw InputError("", field, "'" + text + "' is not one of auto, frames, tiles");
+}
+
+const char* work_sharing_name(WorkSharing sharing) {
+  switch (sharing) {
+    case WorkSharing::kFrames:
+      return "frames";
+    case WorkSharing::kTiles:
+      return "tiles";
+    default:
+      return "auto";
+  }
+}
+
 RenderedFrame render_frame(const Scene& scene, std::size_t index, std::size_t frames,
-                           const std::function<void(const RenderProgress&)>& progress) {
+                           const std::function<void(const RenderProgress&)>& progress,
+                           const ProcessGroup& processes) {
   RenderedFrame frame;
   frame.index = index;
   frame.time_s = scene.time_s;
   const FrameSpectra spectra = frame_spectra(scene);
-  const std::unique_ptr<Integrator> integrator = make_integrator(scene, spectra);
+  const std::unique_ptr<Integrator> integrator = make_integrator(scene, spectra, processes);
   for (std::size_t s = 0; s < scene.sensors.size(); ++s) {
     RenderOptions options;
+    options.row_offset = processes.rank();
+    options.row_stride = processes.size();
     if (progress)
       options.progress = [&](int done, int total) {
         progress({index, frames, scene.time_s, static_cast<int>(s), done, total});
       };
-    frame.images.push_back(
-        render_sensor(scene, static_cast<int>(s), *integrator, spectra, options));
+    SensorImage image = render_sensor(scene, static_cast<int>(s), *integrator, spectra, options);
+    if (processes.size() > 1) {
+      // Rank 0 takes every other process's rows into its image.
+      const std::vector<std::string> shares =
+          processes.gather(encode_image_rows(image, options.row_offset, options.row_stride));
+      for (std::size_t r = 1; r < shares.size(); ++r) decode_image_rows(shares[r], image);
+    }
+    frame.images.push_back(std::move(image));
   }
   return frame;
 }
 
-SequenceResult render_sequence(Scene& scene, const std::vector<double>& times_s,
-                               const SequenceOptions& options) {
-  SequenceResult result;
-  result.times_s = times_s;
-  // Target masks once: surfaces do not move.
-  result.masks = scene_target_masks(scene);
-  result.with_metrics = !result.masks.empty();
-  if (options.on_masks) options.on_masks(result.masks);
-  const int nodes_per_band = scene.settings.spectral_nodes_per_band;
-  for (std::size_t f = 0; f < times_s.size(); ++f) {
-    const auto staging_start = std::chrono::steady_clock::now();
-    stage_scene(scene, times_s[f]);
-    const double staging_s =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - staging_start).count();
-    RenderedFrame frame = render_frame(scene, f, times_s.size(), options.progress);
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// The frame loop, on every process of the group.
+class SequenceRun {
+ public:
+  SequenceRun(Scene& scene, const std::vector<double>& times_s, const SequenceOptions& options)
+      : scene_(scene), times_(times_s), options_(options), group_(*options.processes) {
+    result_.times_s = times_s;
+  }
+
+  SequenceResult run() {
+    // Target masks once, on rank 0 (surfaces do not move).
+    run_together(group_, [&] {
+      if (group_.is_root()) result_.masks = scene_target_masks(scene_);
+    });
+    result_.with_metrics = !result_.masks.empty();
+    if (group_.is_root() && options_.on_masks) options_.on_masks(result_.masks);
+    const std::size_t ranks = static_cast<std::size_t>(group_.size());
+    const bool by_frames = options_.sharing == WorkSharing::kFrames ||
+                           (options_.sharing == WorkSharing::kAuto && times_.size() >= ranks) ||
+                           ranks == 1;
+    if (by_frames)
+      for (std::size_t first = 0; first < times_.size(); first += ranks) frames_from(first);
+    else
+      for (std::size_t f = 0; f < times_.size(); ++f) frame_by_tiles(f);
+    if (result_.with_metrics) {
+      result_.reference_time_s = screening_reference_time_s(scene_);
+      result_.series =
+          summarize_screening(result_.metrics, scene_.metrics, result_.reference_time_s);
+    }
+    return std::move(result_);
+  }
+
+ private:
+  // Stages frame f and renders it, or this process's share of it.
+  RenderedFrame stage_and_render(std::size_t f, const ProcessGroup& processes) {
+    const auto start = std::chrono::steady_clock::now();
+    stage_scene(scene_, times_[f]);
+    const double staging_s = seconds_since(start);
+    RenderedFrame frame = render_frame(scene_, f, times_.size(), options_.progress, processes);
     frame.staging_seconds = staging_s;
-    for (std::size_t s = 0; s < frame.images.size(); ++s) {
-      const SensorImage& image = frame.images[s];
-      result.sensor_frames.push_back(frame_stats(image, times_s[f], staging_s));
-      for (RegionStats& r : region_stats(image, scene.regions, nodes_per_band))
-        result.time_series.push_back({times_s[f], image.sensor, std::move(r)});
-      if (result.with_metrics) {
-        auto rows =
-            screening_metrics(image, result.masks[s], scene.metrics, nodes_per_band, times_s[f]);
-        result.metrics.insert(result.metrics.end(), rows.begin(), rows.end());
+    if (options_.on_rendered)
+      options_.on_rendered({f, times_.size(), times_[f], seconds_since(start), group_.rank(),
+                            group_.size(), processes.size() > 1});
+    return frame;
+  }
+
+  // Frames first … first + N − 1, one per process; rank 0 takes them in order.
+  void frames_from(std::size_t first) {
+    const std::size_t f = first + static_cast<std::size_t>(group_.rank());
+    std::optional<RenderedFrame> mine;
+    std::exception_ptr failure;
+    if (f < times_.size()) try {
+        mine = stage_and_render(f, single_process());
+      } catch (...) {
+        failure = std::current_exception();
+      }
+    if (group_.size() == 1) {
+      if (failure) std::rethrow_exception(failure);
+      take(std::move(*mine));
+      return;
+    }
+    // Each process's outcome: a failure, or its frame.
+    ByteWriter out;
+    out.put_string(encode_failure(failure));
+    out.put_string(mine && !failure ? encode_frame(*mine) : std::string());
+    const std::vector<std::string> outcomes = group_.gather(out.take());
+    std::exception_ptr stop;
+    for (std::size_t r = 0; r < outcomes.size() && first + r < times_.size(); ++r) {
+      ByteReader in(outcomes[r]);
+      const std::string failed = in.get_string();
+      if (!failed.empty()) {
+        stop = r == 0 ? failure : decode_failure(failed, static_cast<int>(r));
+        break;
+      }
+      try {
+        take(r == 0 ? std::move(*mine) : decode_frame(in.get_string(), scene_));
+      } catch (...) {
+        stop = std::current_exception();
+        break;
       }
     }
-    if (options.on_frame) options.on_frame(frame);
+    share_failure(group_, stop);
   }
-  if (result.with_metrics) {
-    result.reference_time_s = screening_reference_time_s(scene);
-    result.series = summarize_screening(result.metrics, scene.metrics, result.reference_time_s);
+
+  // Frame f, every process rendering its rows; rank 0 takes it.
+  void frame_by_tiles(std::size_t f) {
+    // Staging fails (a corrupt keyframe) on every process alike: shared, so
+    // that rank 0 reports it once.
+    std::optional<RenderedFrame> frame;
+    std::exception_ptr failure;
+    try {
+      frame = stage_and_render(f, group_);
+    } catch (...) {
+      failure = std::current_exception();
+    }
+    share_failure(group_, failure);
+    std::exception_ptr stop;
+    if (group_.is_root()) try {
+        take(std::move(*frame));
+      } catch (...) {
+        stop = std::current_exception();
+      }
+    share_failure(group_, stop);
   }
-  return result;
+
+  // Rank 0: measures a whole frame and hands it on.
+  void take(RenderedFrame frame) {
+    const double t = frame.time_s;
+    const int nodes_per_band = scene_.settings.spectral_nodes_per_band;
+    for (std::size_t s = 0; s < frame.images.size(); ++s) {
+      const SensorImage& image = frame.images[s];
+      result_.sensor_frames.push_back(frame_stats(image, t, frame.staging_seconds));
+      for (RegionStats& r : region_stats(image, scene_.regions, nodes_per_band))
+        result_.time_series.push_back({t, image.sensor, std::move(r)});
+      if (result_.with_metrics) {
+        auto rows = screening_metrics(image, result_.masks[s], scene_.metrics, nodes_per_band, t);
+        result_.metrics.insert(result_.metrics.end(), rows.begin(), rows.end());
+      }
+    }
+    if (options_.on_frame) options_.on_frame(frame);
+  }
+
+  Scene& scene_;
+  const std::vector<double>& times_;
+  const SequenceOptions& options_;
+  const ProcessGroup& group_;
+  SequenceResult result_;
+};
+
+}  // namespace
+
+SequenceResult render_sequence(Scene& scene, const std::vector<double>& times_s,
+                               const SequenceOptions& options) {
+  return SequenceRun(scene, times_s, options).run();
 }
 
 }  // namespace obscura

@@ -8,6 +8,12 @@
 // Frames are handed to a callback as they complete, so that a writer can put
 // them on disk and the images need not stay in memory; what the sequence
 // measured comes back as data (report/sequence_output.h writes it).
+//
+// Shared among processes (core/process_group.h, MPI ranks): by frames, each
+// process renders every N-th frame and hands it to rank 0; or by tiles, every
+// process renders every N-th row of each frame and a share of its photons.
+// Rank 0 measures every frame and calls on_frame in frame order, so what it
+// gets is bit for bit what one process gets (docs/cluster.md).
 #include <cstddef>
 #include <functional>
 #include <string>
@@ -16,6 +22,7 @@
 #include "obscura/analysis/region_stats.h"
 #include "obscura/analysis/screening_metrics.h"
 #include "obscura/analysis/target_mask.h"
+#include "obscura/core/process_group.h"
 #include "obscura/film/sensor_image.h"
 #include "obscura/scene/scene.h"
 
@@ -75,13 +82,37 @@ struct SequenceResult {
   std::vector<ScreeningSeries> series;
 };
 
+// How the processes of a run share a sequence: every N-th frame each, or
+// every N-th row of every frame (and its photons); auto: by frames when there
+// are at least as many frames as processes, else by tiles.
+enum class WorkSharing { kAuto, kFrames, kTiles };
+// "auto", "frames", "tiles"; InputError naming `field` otherwise.
+WorkSharing parse_work_sharing(const std::string& text, const std::string& field = "--share");
+const char* work_sharing_name(WorkSharing sharing);
+
+// A frame, or this process's share of it, just rendered on this process.
+struct FrameRendered {
+  std::size_t frame = 0, frames = 0;
+  double time_s = 0;
+  double seconds = 0;  // staging and rendering, on this process
+  int rank = 0, ranks = 1;
+  bool by_tiles = false;
+};
+
 struct SequenceOptions {
+  // Progress of this process's own rendering.
   std::function<void(const RenderProgress&)> progress;
+  // On the process that rendered a frame (or its share), when it is done.
+  std::function<void(const FrameRendered&)> on_rendered;
   // Called once the target masks are known, before the first frame is staged
   // (a caller can warn about sensors that do not see the target).
   std::function<void(const std::vector<TargetMask>&)> on_masks;
-  // Called with each frame when it is complete, before the next is staged.
+  // Called with each frame when it is complete, in frame order (on rank 0 only).
   std::function<void(const RenderedFrame&)> on_frame;
+  // Who shares the work, and how. Every process of the group calls
+  // render_sequence with the same scene, times and sharing.
+  const ProcessGroup* processes = &single_process();
+  WorkSharing sharing = WorkSharing::kAuto;
 };
 
 // "A:B:STEP" in seconds: A, A + STEP, … up to B inclusive (to 1e-9 of a
@@ -93,13 +124,20 @@ std::vector<double> parse_time_range(const std::string& text, const std::string&
 std::vector<TargetMask> scene_target_masks(const Scene& scene);
 
 // Renders `scene` at each of `times_s` (any order; frames are numbered in the
-// order given). Leaves the scene staged at the last time. Settings (method,
-// threads, seed) are scene.settings.
+// order given). Leaves the scene staged at the last time this process
+// rendered. Settings (method, threads, seed) are scene.settings. The result is
+// complete on rank 0; the other processes get only times_s. A failure on any
+// process ends the run on all of them (rank 0 throws the error, the others a
+// PeerFailure) after rank 0 has had every frame before it.
 SequenceResult render_sequence(Scene& scene, const std::vector<double>& times_s,
                                const SequenceOptions& options = {});
 
 // One frame of the staged scene: every sensor through one prepared integrator.
+// With a group of processes, every one of them calls it: each renders every
+// N-th row and traces a share of the photons; rank 0 gets the whole frame,
+// the others their share.
 RenderedFrame render_frame(const Scene& scene, std::size_t index = 0, std::size_t frames = 1,
-                           const std::function<void(const RenderProgress&)>& progress = {});
+                           const std::function<void(const RenderProgress&)>& progress = {},
+                           const ProcessGroup& processes = single_process());
 
 }  // namespace obscura

@@ -60,13 +60,15 @@ struct PhotonMapIntegrator::Workspace final : RayWorkspace {
   MediumPoint point, scratch;
 };
 
-PhotonMapIntegrator::PhotonMapIntegrator(const Scene& scene, const FrameSpectra& spectra)
+PhotonMapIntegrator::PhotonMapIntegrator(const Scene& scene, const FrameSpectra& spectra,
+                                         const ProcessGroup& processes)
     : scene_(scene), spectra_(spectra), settings_(scene.settings.photon_map) {
   PhotonTracingSettings tracing;
   tracing.photons = settings_.photons_per_node;
   tracing.store_first_scatter = settings_.pure;
   tracing.seed = scene.settings.seed;
   tracing.threads = scene.settings.threads;
+  tracing.processes = &processes;
   for (const std::vector<SpectralNodes>& sensor_bands : spectra) {
     const auto start = std::chrono::steady_clock::now();
     PreparationStats stats;

@@ -27,6 +27,7 @@
 #include <memory>
 #include <vector>
 
+#include "obscura/core/process_group.h"
 #include "obscura/core/rng.h"
 #include "obscura/medium/phase_function.h"
 #include "obscura/render/integrator.h"
@@ -39,7 +40,9 @@ namespace obscura {
 // once per staged scene when the integrator is made; then radiance along rays.
 class PhotonMapIntegrator final : public Integrator {
  public:
-  PhotonMapIntegrator(const Scene& scene, const FrameSpectra& spectra);
+  // `processes`: who shares the photon tracing (core/process_group.h).
+  PhotonMapIntegrator(const Scene& scene, const FrameSpectra& spectra,
+                      const ProcessGroup& processes = single_process());
 
   RenderMethod method() const override { return RenderMethod::kPhotonMap; }
   std::unique_ptr<RayWorkspace> make_workspace() const override;

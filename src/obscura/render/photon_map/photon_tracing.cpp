@@ -6,6 +6,8 @@
 #include <limits>
 #include <numbers>
 
+#include "obscura/core/byte_stream.h"
+#include "obscura/core/check.h"
 #include "obscura/core/parallel.h"
 #include "obscura/core/sampling.h"
 #include "obscura/medium/phase_function.h"
@@ -278,6 +280,28 @@ class PhotonSources {
   double emission_share_ = 1.0;  // of the emission lattice's power the photons carry
 };
 
+// Every process's chunks (c ≡ rank mod ranks) to every process.
+void share_chunks(const ProcessGroup& processes, std::vector<std::vector<Photon>>& stored,
+                  std::vector<std::array<double, 3>>& launched) {
+  const auto rank = static_cast<std::size_t>(processes.rank()),
+             ranks = static_cast<std::size_t>(processes.size());
+  ByteWriter out;
+  for (std::size_t c = rank; c < stored.size(); c += ranks) {
+    out.put(launched[c]);
+    out.put_vector(stored[c]);
+  }
+  const std::vector<std::string> all = processes.all_gather(out.take());
+  for (std::size_t r = 0; r < ranks; ++r) {
+    if (r == rank) continue;
+    ByteReader in(all[r]);
+    for (std::size_t c = r; c < stored.size(); c += ranks) {
+      launched[c] = in.get<std::array<double, 3>>();
+      stored[c] = in.get_vector<Photon>();
+    }
+    OBSCURA_CHECK(in.done());
+  }
+}
+
 }  // namespace
 
 BoundingSphere photon_bounding_sphere(const Scene& scene) {
@@ -305,12 +329,18 @@ TracedPhotons trace_photons(const Scene& scene, const SpectralNode& node, std::u
   out.launched_count[kEnvironment] = n_env;
   out.launched_count[kEmission] = est.emission_w_um > 0 ? n_em : 0;
 
-  // Photon i draws from stream i: chunks of them in parallel, gathered in
-  // chunk order, so the result does not depend on the thread count.
+  // Photon i draws from stream i: chunks of them in parallel (and among
+  // processes), gathered in chunk order, so the result does not depend on the
+  // thread or process count.
   const std::size_t chunks = static_cast<std::size_t>((n + kChunk - 1) / kChunk);
   std::vector<std::vector<Photon>> stored(chunks);
   std::vector<std::array<double, 3>> launched(chunks, {0, 0, 0});
-  parallel_for(chunks, settings.threads, [&](std::size_t c) {
+  const ProcessGroup& processes = *settings.processes;
+  const auto rank = static_cast<std::size_t>(processes.rank()),
+             ranks = static_cast<std::size_t>(processes.size());
+  const std::size_t own_chunks = chunks / ranks + (rank < chunks % ranks ? 1 : 0);
+  parallel_for(own_chunks, settings.threads, [&](std::size_t own) {
+    const std::size_t c = own * ranks + rank;
     MediumPoint scratch;
     const long long begin = static_cast<long long>(c) * kChunk, end = std::min(n, begin + kChunk);
     for (long long i = begin; i < end; ++i) {
@@ -334,6 +364,7 @@ TracedPhotons trace_photons(const Scene& scene, const SpectralNode& node, std::u
       if (l.power > 0) trace_photon(scene, node, lambda, l, settings, rng, scratch, stored[c]);
     }
   });
+  if (ranks > 1) share_chunks(processes, stored, launched);
   std::size_t total_stored = 0;
   for (const auto& s : stored) total_stored += s.size();
   out.photons.reserve(total_stored);

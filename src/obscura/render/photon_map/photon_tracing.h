@@ -35,6 +35,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "obscura/core/process_group.h"
 #include "obscura/render/photon_map/photon.h"
 #include "obscura/render/spectral_nodes.h"
 #include "obscura/scene/scene.h"
@@ -58,6 +59,11 @@ struct PhotonTracingSettings {
   std::uint64_t seed = 1;
   int threads = 0;
   int max_scatterings = 10000;  // safety net; roulette ends photons long before
+  // The processes sharing the work (core/process_group.h): each traces the
+  // chunks of photons whose index modulo their count is its rank, and every
+  // process receives every chunk, in chunk order, so the photons are the same
+  // bits for any number of processes. Called by every process together.
+  const ProcessGroup* processes = &single_process();
 };
 
 // Spectral powers (W µm⁻¹) per source kind.

@@ -57,10 +57,12 @@ double kernel_overlap(int r, int k) {
 
 }  // namespace
 
-RadianceCache::RadianceCache(const Scene& scene, const std::vector<SpectralNode>& nodes)
+RadianceCache::RadianceCache(const Scene& scene, const std::vector<SpectralNode>& nodes,
+                             const ProcessGroup& processes)
     : lattice_(*scene.medium, scene.settings.radiance_cache.voxel_m,
                scene.settings.radiance_cache.lateral_period_m,
                static_cast<std::size_t>(kMaxLatticeNodes)),
+      processes_(&processes),
       sh_degree_(scene.settings.radiance_cache.sh_degree),
       sh_count_(sh_coefficient_count(sh_degree_)),
       spectral_count_(static_cast<int>(scene.medium->wavelengths_um().size())),
@@ -205,6 +207,7 @@ void RadianceCache::splat(const Scene& scene, const SpectralNode& node, int inde
   tracing.store_first_environment_scatter = true;  // only the sun's single scattering is apart
   tracing.seed = scene.settings.seed;
   tracing.threads = scene.settings.threads;
+  tracing.processes = processes_;
   tracing.lateral_period_m = lattice_.periodic() ? settings.lateral_period_m : 0.0;
   // One block of 2^40 photon streams per spectral node, above the pixels'.
   const std::uint64_t base = (static_cast<std::uint64_t>(index) + 1) << 40;

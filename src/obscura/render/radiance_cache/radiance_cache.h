@@ -20,6 +20,7 @@
 #include <cstddef>
 #include <vector>
 
+#include "obscura/core/process_group.h"
 #include "obscura/render/integrator.h"
 #include "obscura/render/radiance_cache/cache_lattice.h"
 #include "obscura/render/radiance_cache/spherical_harmonics.h"
@@ -31,7 +32,9 @@ class RadianceCache {
   // The cache of the staged scene for `nodes` (each a distinct wavelength),
   // with scene.settings.radiance_cache, seed and threads. The scene needs a
   // medium.
-  RadianceCache(const Scene& scene, const std::vector<SpectralNode>& nodes);
+  // `processes` share the photon tracing (render/photon_map/photon_tracing.h).
+  RadianceCache(const Scene& scene, const std::vector<SpectralNode>& nodes,
+                const ProcessGroup& processes = single_process());
 
   const CacheLattice& lattice() const { return lattice_; }
   int sh_degree() const { return sh_degree_; }
@@ -62,6 +65,7 @@ class RadianceCache {
              const std::vector<float>& kernel_sigma_s);
 
   CacheLattice lattice_;
+  const ProcessGroup* processes_;
   int sh_degree_ = 2, sh_count_ = 9, spectral_count_ = 1;
   bool has_sun_ = false;
   std::vector<float> sun_;

@@ -93,7 +93,8 @@ class CacheInScattering {
 
 }  // namespace
 
-RadianceCacheIntegrator::RadianceCacheIntegrator(const Scene& scene, const FrameSpectra& spectra)
+RadianceCacheIntegrator::RadianceCacheIntegrator(const Scene& scene, const FrameSpectra& spectra,
+                                                 const ProcessGroup& processes)
     : scene_(scene), spectra_(spectra) {
   // The distinct wavelengths of every sensor's bands: sensors that share a
   // band share its cache.
@@ -112,7 +113,7 @@ RadianceCacheIntegrator::RadianceCacheIntegrator(const Scene& scene, const Frame
     }
   }
   if (scene.medium && !distinct_.empty()) {
-    cache_ = std::make_unique<RadianceCache>(scene, distinct_);
+    cache_ = std::make_unique<RadianceCache>(scene, distinct_, processes);
     preparation_.photons = cache_->photons_stored();
     preparation_.photon_bytes = cache_->memory_bytes();
     preparation_.seconds = cache_->seconds;

@@ -12,6 +12,7 @@
 #include <memory>
 #include <vector>
 
+#include "obscura/core/process_group.h"
 #include "obscura/render/integrator.h"
 #include "obscura/render/radiance_cache/radiance_cache.h"
 
@@ -19,7 +20,9 @@ namespace obscura {
 
 class RadianceCacheIntegrator final : public Integrator {
  public:
-  RadianceCacheIntegrator(const Scene& scene, const FrameSpectra& spectra);
+  // `processes`: who shares the photon tracing (core/process_group.h).
+  RadianceCacheIntegrator(const Scene& scene, const FrameSpectra& spectra,
+                          const ProcessGroup& processes = single_process());
 
   RenderMethod method() const override { return RenderMethod::kRadianceCache; }
   std::unique_ptr<RayWorkspace> make_workspace() const override;

@@ -1,0 +1,166 @@
+#include "obscura/cluster/process_world.h"
+
+#include <climits>
+#include <cstdlib>
+#include <numeric>
+
+#include "obscura/core/check.h"
+#include "obscura/core/error.h"
+
+#ifdef OBSCURA_WITH_MPI
+#include <mpi.h>
+#endif
+
+namespace obscura {
+
+bool ProcessWorld::launched_by_mpi() {
+  for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_RANK"})
+    if (std::getenv(name)) return true;
+  return false;
+}
+
+#ifdef OBSCURA_WITH_MPI
+
+namespace {
+
+// MPI counts are ints: a message must stay under 2 GiB.
+int message_count(std::size_t bytes) {
+  if (bytes > static_cast<std::size_t>(INT_MAX))
+    throw Error("a message between processes of " + std::to_string(bytes) +
+                " bytes exceeds MPI's 2 GiB limit: use fewer photons or smaller images per rank");
+  return static_cast<int>(bytes);
+}
+
+void check_mpi(int code, const char* what) {
+  OBSCURA_CHECK_MSG(code == MPI_SUCCESS, std::string(what) + " failed");
+}
+
+class MpiGroup final : public ProcessGroup {
+ public:
+  MpiGroup() {
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
+    MPI_Comm_size(MPI_COMM_WORLD, &size_);
+  }
+  int rank() const override { return rank_; }
+  int size() const override { return size_; }
+
+  std::vector<std::string> all_gather(const std::string& bytes) const override {
+    int count = message_count(bytes.size());
+    std::vector<int> counts(static_cast<std::size_t>(size_));
+    check_mpi(MPI_Allgather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, MPI_COMM_WORLD),
+              "MPI_Allgather");
+    const std::vector<int> offsets = displacements(counts);
+    std::string all(total(counts), '\0');
+    check_mpi(MPI_Allgatherv(bytes.data(), count, MPI_BYTE, all.data(), counts.data(),
+                             offsets.data(), MPI_BYTE, MPI_COMM_WORLD),
+              "MPI_Allgatherv");
+    return split(all, counts, offsets);
+  }
+
+  std::vector<std::string> gather(const std::string& bytes) const override {
+    int count = message_count(bytes.size());
+    std::vector<int> counts(static_cast<std::size_t>(size_));
+    check_mpi(MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, MPI_COMM_WORLD),
+              "MPI_Gather");
+    std::vector<int> offsets;
+    std::string all;
+    if (rank_ == 0) {
+      offsets = displacements(counts);
+      all.assign(total(counts), '\0');
+    }
+    check_mpi(MPI_Gatherv(bytes.data(), count, MPI_BYTE, all.data(), counts.data(), offsets.data(),
+                          MPI_BYTE, 0, MPI_COMM_WORLD),
+              "MPI_Gatherv");
+    if (rank_ != 0) return {};
+    return split(all, counts, offsets);
+  }
+
+  std::string broadcast(const std::string& bytes) const override {
+    int count = rank_ == 0 ? message_count(bytes.size()) : 0;
+    check_mpi(MPI_Bcast(&count, 1, MPI_INT, 0, MPI_COMM_WORLD), "MPI_Bcast");
+    std::string out = rank_ == 0 ? bytes : std::string(static_cast<std::size_t>(count), '\0');
+    check_mpi(MPI_Bcast(out.data(), count, MPI_BYTE, 0, MPI_COMM_WORLD), "MPI_Bcast");
+    return out;
+  }
+
+ private:
+  // Offsets of each rank's bytes in the gathered whole; the whole must itself
+  // stay under MPI's int limit.
+  static std::vector<int> displacements(const std::vector<int>& counts) {
+    std::vector<int> offsets(counts.size());
+    std::size_t at = 0;
+    for (std::size_t r = 0; r < counts.size(); ++r) {
+      offsets[r] = message_count(at);
+      at += static_cast<std::size_t>(counts[r]);
+    }
+    message_count(at);
+    return offsets;
+  }
+  static std::size_t total(const std::vector<int>& counts) {
+    return std::accumulate(counts.begin(), counts.end(), std::size_t{0});
+  }
+  static std::vector<std::string> split(const std::string& all, const std::vector<int>& counts,
+                                        const std::vector<int>& offsets) {
+    std::vector<std::string> parts;
+    for (std::size_t r = 0; r < counts.size(); ++r)
+      parts.push_back(
+          all.substr(static_cast<std::size_t>(offsets[r]), static_cast<std::size_t>(counts[r])));
+    return parts;
+  }
+
+  int rank_ = 0, size_ = 1;
+};
+
+}  // namespace
+
+struct ProcessWorld::Mpi {
+  MpiGroup group;
+};
+
+ProcessWorld::ProcessWorld(int& argc, char**& argv) {
+  if (!launched_by_mpi()) return;
+  int provided = 0;
+  MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided);
+  // Errors come back as codes (check_mpi) rather than ending the job unseen.
+  MPI_Comm_set_errhandler(MPI_COMM_WORLD, MPI_ERRORS_RETURN);
+  mpi_ = std::make_unique<Mpi>();
+}
+
+ProcessWorld::~ProcessWorld() {
+  if (mpi_) {
+    mpi_.reset();
+    MPI_Finalize();
+  }
+}
+
+void ProcessWorld::abort(int status) const {
+  if (mpi_) MPI_Abort(MPI_COMM_WORLD, status);
+  std::exit(status);
+}
+
+bool ProcessWorld::built_with_mpi() { return true; }
+
+const ProcessGroup& ProcessWorld::group() const {
+  return mpi_ ? static_cast<const ProcessGroup&>(mpi_->group) : single_process();
+}
+
+#else  // without MPI: always this process alone
+
+struct ProcessWorld::Mpi {};
+
+ProcessWorld::ProcessWorld(int& /*argc*/, char**& /*argv*/) {
+  // N copies of the whole job writing the same files would be worse than none.
+  for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE"})
+    if (const char* size = std::getenv(name); size && std::atoi(size) > 1)
+      throw Error(std::string("started by an MPI launcher as ") + size +
+                  " processes, but this obscura was built without MPI (scripts/install-deps "
+                  "installs libopenmpi-dev; then reconfigure): run it without mpirun");
+}
+ProcessWorld::~ProcessWorld() = default;
+void ProcessWorld::abort(int status) const { std::exit(status); }
+bool ProcessWorld::built_with_mpi() { return false; }
+const ProcessGroup& ProcessWorld::group() const { return single_process(); }
+
+#endif
+
+}  // namespace obscura
