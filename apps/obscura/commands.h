@@ -33,5 +33,6 @@ Command add_cloud_state_command(CLI::App& app);
 Command add_mie_command(CLI::App& app);
 Command add_optics_command(CLI::App& app);
 Command add_prepare_command(CLI::App& app, const Invocation& invocation);
+Command add_study_command(CLI::App& app, const Invocation& invocation);
 
 }  // namespace obscura::cli

@@ -97,6 +97,7 @@ int main(int argc, char** argv) {
   add(obscura::cli::add_mie_command(app));
   add(obscura::cli::add_optics_command(app));
   add(obscura::cli::add_prepare_command(app, invocation));
+  add(obscura::cli::add_study_command(app, invocation));
 
   try {
     app.parse(argc, argv);
@@ -110,11 +111,11 @@ int main(int argc, char** argv) {
     for (auto* sub : app.get_subcommands()) {
       // Only these share their work among MPI ranks; N copies of any other
       // would write the same files N times.
-      if (world->distributed() && sub->get_name() != "render") {
+      if (world->distributed() && sub->get_name() != "render" && sub->get_name() != "study") {
         if (!processes.is_root()) return obscura::cli::kExitUsage;
         std::cerr << "obscura: error: '" << sub->get_name()
-                  << "' runs on one process: start it without mpirun (only 'render' shares "
-                     "its work among MPI ranks)\n";
+                  << "' runs on one process: start it without mpirun (only 'render' and "
+                     "'study' share their work among MPI ranks)\n";
         return obscura::cli::kExitUsage;
       }
       return runners.at(sub)();

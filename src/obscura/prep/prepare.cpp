@@ -304,9 +304,13 @@ void write_cloud(const std::filesystem::path& out_dir, const Concentrations& c,
 
 PrepareReport prepare_cloud(const std::filesystem::path& config_path,
                             const std::filesystem::path& out_dir, const PrepareOptions& options) {
+  return prepare_cloud(read_json_file(config_path.string()), config_path, out_dir, options);
+}
+
+PrepareReport prepare_cloud(const nlohmann::json& doc, const std::filesystem::path& config_path,
+                            const std::filesystem::path& out_dir, const PrepareOptions& options) {
   namespace fs = std::filesystem;
   const std::string file = config_path.string();
-  const nlohmann::json doc = read_json_file(config_path);
   JsonObject root(doc, file, "");
   PrepareReport report;
 

@@ -9,6 +9,7 @@
 // cloud.
 #include <filesystem>
 #include <functional>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -46,6 +47,13 @@ struct PrepareReport {
 // first and renamed at the end, so a failed run leaves nothing behind. Throws
 // InputError naming the file and JSON path on bad input.
 PrepareReport prepare_cloud(const std::filesystem::path& config,
+                            const std::filesystem::path& out_dir,
+                            const PrepareOptions& options = {});
+
+// The same from an already-parsed configuration (a parameter study's case,
+// study/study_spec.h): `config_path` names it in errors, and relative paths
+// in it are relative to its folder.
+PrepareReport prepare_cloud(const nlohmann::json& config, const std::filesystem::path& config_path,
                             const std::filesystem::path& out_dir,
                             const PrepareOptions& options = {});
 
