@@ -1,0 +1,75 @@
+#pragma once
+// A group of N "processes" that are threads of the test, for testing what the
+// library shares among MPI ranks (core/process_group.h) without MPI: run_ranks
+// starts one thread per rank, each with its own group object, and the
+// collectives meet at a barrier. The same code paths run as under mpirun;
+// only the transport differs (cluster/process_world.cpp is tested by the
+// mpirun CLI tests).
+#include <barrier>
+#include <exception>
+#include <functional>
+#include <memory>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "obscura/core/process_group.h"
+
+namespace obscura::testing {
+
+class ThreadProcessGroup final : public ProcessGroup {
+ public:
+  struct Shared {
+    explicit Shared(int n) : size(n), slots(static_cast<std::size_t>(n)), sync(n) {}
+    int size;
+    std::vector<std::string> slots;
+    std::barrier<> sync;
+  };
+
+  ThreadProcessGroup(std::shared_ptr<Shared> shared, int rank)
+      : shared_(std::move(shared)), rank_(rank) {}
+
+  int rank() const override { return rank_; }
+  int size() const override { return shared_->size; }
+
+  std::vector<std::string> all_gather(const std::string& bytes) const override {
+    shared_->slots[static_cast<std::size_t>(rank_)] = bytes;
+    shared_->sync.arrive_and_wait();
+    std::vector<std::string> all = shared_->slots;
+    shared_->sync.arrive_and_wait();  // nobody writes a slot before all have read
+    return all;
+  }
+  std::vector<std::string> gather(const std::string& bytes) const override {
+    std::vector<std::string> all = all_gather(bytes);
+    return rank_ == 0 ? all : std::vector<std::string>{};
+  }
+  std::string broadcast(const std::string& bytes) const override {
+    return all_gather(rank_ == 0 ? bytes : std::string()).front();
+  }
+
+ private:
+  std::shared_ptr<Shared> shared_;
+  int rank_;
+};
+
+// Runs work(group) on `ranks` threads, one rank each; rethrows the first
+// exception a rank ended with, after all have ended.
+inline void run_ranks(int ranks, const std::function<void(const ProcessGroup&)>& work) {
+  auto shared = std::make_shared<ThreadProcessGroup::Shared>(ranks);
+  std::vector<std::exception_ptr> failures(static_cast<std::size_t>(ranks));
+  std::vector<std::thread> threads;
+  for (int r = 0; r < ranks; ++r)
+    threads.emplace_back([&, r] {
+      const ThreadProcessGroup group(shared, r);
+      try {
+        work(group);
+      } catch (...) {
+        failures[static_cast<std::size_t>(r)] = std::current_exception();
+      }
+    });
+  for (std::thread& t : threads) t.join();
+  for (const std::exception_ptr& f : failures)
+    if (f) std::rethrow_exception(f);
+}
+
+}  // namespace obscura::testing
