@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "commands.h"
+#include "format_option.h"
 #include "memory_option.h"
 #include "obscura/core/check.h"
 #include "obscura/core/error.h"
@@ -61,6 +62,7 @@ Command add_render_command(CLI::App& app, const Invocation& invocation) {
     double at = 0.0;
     std::string time_range;
     bool json = false;
+    std::vector<std::string> formats;
   };
   auto o = std::make_shared<Options>();
   cmd->add_option("scene", o->scene, "Scene file (JSON, docs/formats.md)")->required();
@@ -75,6 +77,7 @@ Command add_render_command(CLI::App& app, const Invocation& invocation) {
                   "target surface screening metrics and their plots (docs/metrics.md)")
       ->excludes(at);
   cmd->add_flag("--json", o->json, "Print a JSON summary on stdout");
+  add_format_option(cmd, o->formats);
   auto max_memory = std::make_shared<std::string>();
   add_max_memory_option(cmd, max_memory);
   return {cmd, [o, invocation, max_memory]() {
@@ -88,6 +91,7 @@ Command add_render_command(CLI::App& app, const Invocation& invocation) {
             Scene scene = load_scene(o->scene);
             if (o->threads) scene.settings.threads = *o->threads;
             if (o->seed) scene.settings.seed = *o->seed;
+            apply_formats(o->formats, scene);
             SequenceWriter writer(
                 o->output, scene, times, sequence,
                 make_provenance(invocation.command_line, scene.settings.seed, scene.input_files),
