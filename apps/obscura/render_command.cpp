@@ -41,8 +41,9 @@ SequenceResult render_or_keep_frames(Scene& scene, const std::vector<double>& ti
     if (writer.frames_done().empty()) throw;
     writer.finish_failed(e.what());
     const std::string kept = fmt::format(
-        " (kept the {} completed frames {}–{} and summary.json in {})", writer.frames_done().size(),
-        writer.frames_done().front(), writer.frames_done().back(), writer.dir().string());
+        " (kept the {} completed frames {}–{}{} and summary.json in {})",
+        writer.frames_done().size(), writer.frames_done().front(), writer.frames_done().back(),
+        writer.netcdf_kept() ? ", render.nc" : "", writer.dir().string());
     if (const auto* input = dynamic_cast<const InputError*>(&e))
       throw InputError(input->file(), input->field(), input->detail() + kept);
     if (dynamic_cast<const InternalError*>(&e)) throw;

@@ -1,14 +1,17 @@
 // `obscura render --format netcdf`: render.nc beside the usual outputs, from
 // the option or the scene's "outputs"; an unknown format is a usage error
-// (exit 64) that names the formats, before anything is rendered.
+// (exit 64) that names the formats, before anything is rendered; a sequence
+// that fails part-way keeps render.nc with the frames that completed.
 #include <gtest/gtest.h>
 #include <netcdf.h>
 
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "obscura/io/vdb_keyframe.h"
 #include "support/cli_runner.h"
 #include "support/temp_dir_test.h"
+#include "support/test_puff.h"
 
 namespace fs = std::filesystem;
 
@@ -99,6 +102,35 @@ TEST_F(RenderNetcdfTest, AnUnknownFormatInTheSceneIsAnInputErrorNamingItsPath) {
   EXPECT_EQ(r.status, 1) << r.err;
   EXPECT_NE(r.err.find("scene.json: /outputs/0: unknown output format 'exr'"), std::string::npos)
       << r.err;
+}
+
+TEST_F(RenderNetcdfTest, ASequenceThatFailsPartWayKeepsTheCompletedFrames) {
+  // Keyframes at 0 and 2 s and a corrupt one at 4 s, read when extinction
+  // reaches it (after deactivation at 3 s): frames 0–4 s render, 5 s fails.
+  const GaussianPuffSpec spec = testing::small_puff_spec();
+  write_cloud_keyframe(dir_ / "k0.vdb", make_gaussian_puff(spec), 0.0);
+  write_cloud_keyframe(dir_ / "k1.vdb", make_gaussian_puff(spec), 2.0);
+  std::ofstream(dir_ / "k2.vdb") << "junk";
+  std::ofstream(dir_ / "cloud.json") << R"({
+    "keyframes": [{"file": "k0.vdb", "time": 0}, {"file": "k1.vdb", "time": 2},
+                  {"file": "k2.vdb", "time": 4}],
+    "lifecycle": {"init_end": 0, "loop_start": 0, "loop_end": 1, "loop_wrap": 2.0,
+                  "extinction_start": 2}})";
+  auto doc = scene_doc();
+  doc["clouds"] = {
+      {{"type", "animated"}, {"manifest", "cloud.json"}, {"activation", 0}, {"deactivation", 3}}};
+  write_scene(doc);
+  const auto r = render("--time 0:6:1 --format netcdf");
+  EXPECT_EQ(r.status, 1) << r.err;
+  EXPECT_NE(r.err.find("k2.vdb"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("frames 0–4, render.nc and summary.json"), std::string::npos) << r.err;
+  EXPECT_EQ(dim_length("time"), 5u);
+  int nc = -1;
+  ASSERT_EQ(nc_open((out_ / "render.nc").c_str(), NC_NOWRITE, &nc), NC_NOERR);
+  char status[16] = {};
+  EXPECT_EQ(nc_get_att_text(nc, NC_GLOBAL, "run_status", status), NC_NOERR);
+  nc_close(nc);
+  EXPECT_STREQ(status, "failed");
 }
 
 }  // namespace

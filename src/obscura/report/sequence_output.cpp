@@ -201,7 +201,8 @@ void SequenceWriter::write_frame(const RenderedFrame& frame) {
 }
 
 void SequenceWriter::finish_failed(const std::string& error) {
-  if (netcdf_ && netcdf_->finish_failed(error)) written_.push_back(netcdf_->path());
+  netcdf_kept_ = netcdf_ && netcdf_->finish_failed(error);
+  if (netcdf_kept_) written_.push_back(netcdf_->path());
   summary_["failed"] = {
       {"error", error}, {"frames_completed", frames_done_}, {"frames_planned", times_s_.size()}};
   summary_["outputs"] = nlohmann::json::array();

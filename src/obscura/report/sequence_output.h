@@ -49,6 +49,8 @@ class SequenceWriter {
   // render.nc stays when its records are exactly frames 0 … k−1, and records
   // the failure too (report/netcdf_render_output.h).
   void finish_failed(const std::string& error);
+  // Whether finish_failed() kept render.nc.
+  bool netcdf_kept() const { return netcdf_kept_; }
   // The frames written so far, in order.
   const std::vector<std::size_t>& frames_done() const { return frames_done_; }
 
@@ -80,6 +82,7 @@ class SequenceWriter {
   std::vector<std::size_t> frames_done_;
   std::string metrics_text_;
   std::unique_ptr<NetcdfRenderOutput> netcdf_;  // null unless the outputs name netcdf
+  bool netcdf_kept_ = false;
 };
 
 // What `obscura render` prints when it is done: per frame and sensor the
