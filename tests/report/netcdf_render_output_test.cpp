@@ -322,15 +322,25 @@ TEST_F(NetcdfRenderOutputTest, AFailedRunWhoseFramesAreNotTheFirstRemovesTheFile
   EXPECT_EQ(temporaries_in(dir_), 0);
 }
 
-TEST_F(NetcdfRenderOutputTest, SensorNamesThatShareASuffixAreRefused) {
+TEST_F(NetcdfRenderOutputTest, SensorNamesThatWouldShareAVariableAreRefused) {
   auto doc = tiny_scene();
   doc["sensors"][0]["name"] = "tv.1";
   const Scene scene = parse_scene(doc, dir_ / "scene.json");
   const InputError e = testing::expect_input_error(
       [&] { SequenceWriter(dir_, scene, {0.0}, false, provenance(), "scene.json"); });
   EXPECT_EQ(e.field(), "/sensors/1/name");
-  EXPECT_TRUE(testing::contains(e.detail(), "sensors 'tv.1' and 'tv-1' would share")) << e.what();
+  EXPECT_TRUE(testing::contains(e.detail(),
+                                "sensors 'tv.1' and 'tv-1' would both name a "
+                                "variable band_tv_1 in render.nc"))
+      << e.what();
   EXPECT_FALSE(fs::exists(dir_ / "render.nc"));
+  // Another sensor's prefix and suffix: "min_um_ir" would make band_min_um_ir too.
+  doc = tiny_scene();
+  doc["sensors"][1]["name"] = "min_um_ir";
+  const Scene other = parse_scene(doc, dir_ / "scene.json");
+  const InputError e2 = testing::expect_input_error(
+      [&] { SequenceWriter(dir_, other, {0.0}, false, provenance(), "scene.json"); });
+  EXPECT_TRUE(testing::contains(e2.detail(), "band_min_um_ir")) << e2.what();
   EXPECT_EQ(netcdf_sensor_suffix("seeker-2.b"), "seeker_2_b");
 }
 

@@ -73,6 +73,17 @@ const Metric kMetrics[] = {
      [](const ScreeningMetrics& m) { return m.delta_t_k; }},
 };
 
+// Every name a sensor's dimensions and variables take, before the suffix.
+std::vector<std::string> sensor_name_prefixes() {
+  std::vector<std::string> p = {"band",           "y",          "x", "band_min_um", "band_max_um",
+                                "band_centre_um", "target_mask"};
+  for (const ImageQuantity* q :
+       {&kRadiance, &kRadianceStderr, &kTransmittance, &kApparentTemperature})
+    p.push_back(q->name);
+  for (const Metric& m : kMetrics) p.push_back(m.name);
+  return p;
+}
+
 std::string scene_file(const Scene& scene) {
   return scene.input_files.empty() ? std::string() : scene.input_files.front().string();
 }
@@ -101,20 +112,24 @@ NetcdfRenderOutput::NetcdfRenderOutput(const std::filesystem::path& path, const 
                                        std::vector<double> times_s, const Provenance& provenance,
                                        const std::string& title)
     : path_(path), scene_(scene), times_s_(std::move(times_s)) {
-  // Checks before the file is made: distinct names, and memory for writing
-  // one image (HDF5 compresses a chunk, one image, through two buffers of its
-  // size: the shuffled and the deflated copy).
-  std::map<std::string, std::string> suffixes;
+  // Checks before the file is made: no name taken by two sensors (the same
+  // suffix, or e.g. sensors "a" and "min_um_a" both making band_min_um_a),
+  // and memory for writing one image (HDF5 compresses a chunk, one image,
+  // through two buffers of its size: the shuffled and the deflated copy).
+  std::map<std::string, std::string> names;  // dimension or variable → sensor
+  const std::vector<std::string> prefixes = sensor_name_prefixes();
   std::uint64_t largest_image = 0;
   for (std::size_t i = 0; i < scene.sensors.size(); ++i) {
     const Sensor& sensor = scene.sensors[i];
     const std::string suffix = netcdf_sensor_suffix(sensor.name);
-    const auto [it, fresh] = suffixes.emplace(suffix, sensor.name);
-    if (!fresh)
-      throw InputError(scene_file(scene), fmt::format("/sensors/{}/name", i),
-                       fmt::format("sensors '{}' and '{}' would share the variables of {} "
-                                   "(radiance_{}): rename one",
-                                   it->second, sensor.name, kNetcdfRenderFile, suffix));
+    for (const std::string& prefix : prefixes) {
+      const auto [it, fresh] = names.emplace(prefix + "_" + suffix, sensor.name);
+      if (!fresh)
+        throw InputError(scene_file(scene), fmt::format("/sensors/{}/name", i),
+                         fmt::format("sensors '{}' and '{}' would both name a variable {} in {}: "
+                                     "rename one",
+                                     it->second, sensor.name, it->first, kNetcdfRenderFile));
+    }
     largest_image = std::max<std::uint64_t>(
         largest_image, static_cast<std::uint64_t>(sensor.camera.width()) * sensor.camera.height());
   }
