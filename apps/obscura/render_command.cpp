@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "commands.h"
+#include "format_option.h"
 #include "memory_option.h"
 #include "obscura/core/check.h"
 #include "obscura/core/error.h"
@@ -40,8 +41,9 @@ SequenceResult render_or_keep_frames(Scene& scene, const std::vector<double>& ti
     if (writer.frames_done().empty()) throw;
     writer.finish_failed(e.what());
     const std::string kept = fmt::format(
-        " (kept the {} completed frames {}–{} and summary.json in {})", writer.frames_done().size(),
-        writer.frames_done().front(), writer.frames_done().back(), writer.dir().string());
+        " (kept the {} completed frames {}–{}{} and summary.json in {})",
+        writer.frames_done().size(), writer.frames_done().front(), writer.frames_done().back(),
+        writer.netcdf_kept() ? ", render.nc" : "", writer.dir().string());
     if (const auto* input = dynamic_cast<const InputError*>(&e))
       throw InputError(input->file(), input->field(), input->detail() + kept);
     if (dynamic_cast<const InternalError*>(&e)) throw;
@@ -70,6 +72,7 @@ Command add_render_command(CLI::App& app, const Invocation& invocation) {
     std::string time_range;
     std::string share = "auto";
     bool json = false;
+    std::vector<std::string> formats;
   };
   auto o = std::make_shared<Options>();
   cmd->add_option("scene", o->scene, "Scene file (JSON, docs/formats.md)")->required();
@@ -92,6 +95,7 @@ Command add_render_command(CLI::App& app, const Invocation& invocation) {
       ->check(CLI::IsMember({"auto", "frames", "tiles"}))
       ->capture_default_str();
   cmd->add_flag("--json", o->json, "Print a JSON summary on stdout");
+  add_format_option(cmd, o->formats);
   auto max_memory = std::make_shared<std::string>();
   add_max_memory_option(cmd, max_memory);
   return {cmd, [o, invocation, max_memory]() {
@@ -112,6 +116,7 @@ Command add_render_command(CLI::App& app, const Invocation& invocation) {
               scene = load_scene(o->scene);
               if (o->threads) scene.settings.threads = *o->threads;
               if (o->seed) scene.settings.seed = *o->seed;
+              apply_formats(o->formats, scene);
               if (root)
                 writer.emplace(o->output, scene, times, sequence,
                                make_provenance(invocation.command_line, scene.settings.seed,

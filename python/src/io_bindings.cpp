@@ -40,7 +40,15 @@ void bind_io(py::module_& m) {
         out["width"] = image->width;
         out["height"] = image->height;
         out["channels"] = channels;
-        out["attributes"] = image->string_attributes;
+        // Text attributes as str, numeric ones (obscura.time_s, band limits) as
+        // float and int.
+        py::dict attributes;
+        for (const auto& [name, value] : image->string_attributes)
+          attributes[py::str(name)] = value;
+        for (const auto& [name, value] : image->double_attributes)
+          attributes[py::str(name)] = value;
+        for (const auto& [name, value] : image->int_attributes) attributes[py::str(name)] = value;
+        out["attributes"] = attributes;
         return out;
       },
       py::arg("path"),

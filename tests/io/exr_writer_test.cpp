@@ -40,8 +40,13 @@ TEST_F(ExrWriterTest, RoundTripIsExact) {
       {"obscura.units.lwir.radiance", "W m⁻² sr⁻¹"},
       {"obscura.units.depth", "m"}};
 
+  // Numbers are stored as numbers: read back bit for bit, not as text.
+  const std::map<std::string, double> numbers = {{"obscura.time_s", 0.1 + 0.2},
+                                                 {"obscura.band.lwir.min_um", 8.0}};
+  const std::map<std::string, int> counts = {{"obscura.band.lwir.response_points", 2}};
+
   const fs::path path = dir_ / "nested" / "image.exr";
-  write_exr(path, w, h, {radiance, depth}, attributes);
+  write_exr(path, w, h, {radiance, depth}, attributes, numbers, counts);
   const ExrImage image = read_exr(path);
 
   EXPECT_EQ(image.width, w);
@@ -60,6 +65,12 @@ TEST_F(ExrWriterTest, RoundTripIsExact) {
     ASSERT_TRUE(image.string_attributes.count(name)) << name;
     EXPECT_EQ(image.string_attributes.at(name), value);
   }
+  for (const auto& [name, value] : numbers) {
+    ASSERT_TRUE(image.double_attributes.count(name)) << name;
+    EXPECT_EQ(image.double_attributes.at(name), value) << name;  // exact: 0.30000000000000004
+    EXPECT_FALSE(image.string_attributes.count(name)) << name;
+  }
+  EXPECT_EQ(image.int_attributes.at("obscura.band.lwir.response_points"), 2);
   // No temporary file is left next to the output.
   int entries = 0;
   for ([[maybe_unused]] const auto& e : fs::directory_iterator(path.parent_path())) ++entries;
@@ -83,6 +94,9 @@ TEST_F(ExrWriterTest, RejectsBadArguments) {
   EXPECT_THROW(write_exr(path, 1, 1, {{"Y", {1}}, {"Y", {2}}}, {}), InputError);  // duplicate
   EXPECT_THROW(write_exr(path, 1, 1, {}, {}), InputError);                        // no channel
   EXPECT_THROW(write_exr(path, 1, 1, {{"Y", {1}}}, {{"channels", "x"}}), InputError);  // reserved
+  EXPECT_THROW(write_exr(path, 1, 1, {{"Y", {1}}}, {}, {{"lineOrder", 1.0}}), InputError);
+  EXPECT_THROW(write_exr(path, 1, 1, {{"Y", {1}}}, {{"a", "x"}}, {{"a", 1.0}}),
+               InputError);  // twice
   EXPECT_FALSE(fs::exists(path));
   EXPECT_TRUE(fs::is_empty(dir_));
 }

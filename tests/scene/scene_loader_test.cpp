@@ -330,4 +330,30 @@ TEST(SceneLoader, BadAtmosphereMetricsAndEmissivityTablesAreRejected) {
 }
 
 }  // namespace
+TEST(SceneLoader, OutputsNameTheOptionalFormats) {
+  EXPECT_TRUE(parse_scene(minimal_scene(), "scene.json").outputs.empty());
+  auto doc = minimal_scene();
+  doc["outputs"] = {"netcdf", "netcdf"};  // named twice: written once
+  EXPECT_EQ(parse_scene(doc, "scene.json").outputs,
+            std::vector<OutputFormat>{OutputFormat::kNetcdf});
+  doc["outputs"] = nlohmann::json::array();
+  EXPECT_TRUE(parse_scene(doc, "scene.json").outputs.empty());
+}
+
+TEST(SceneLoader, BadOutputsNameTheirPath) {
+  auto doc = minimal_scene();
+  doc["outputs"] = {"netcdf", "envi"};
+  std::string m = load_error(doc);
+  EXPECT_NE(m.find("/outputs/1: unknown output format 'envi' (expected: netcdf; EXR, PNG, CSV "
+                   "and JSON files are always written)"),
+            std::string::npos)
+      << m;
+  doc["outputs"] = {1};
+  m = load_error(doc);
+  EXPECT_NE(m.find("/outputs/0: must be a format name"), std::string::npos) << m;
+  doc["outputs"] = "netcdf";
+  m = load_error(doc);
+  EXPECT_NE(m.find("/outputs: expected an array"), std::string::npos) << m;
+}
+
 }  // namespace obscura

@@ -1,9 +1,12 @@
 #include "obscura/io/exr_writer.h"
 
 #include <ImfChannelList.h>
+#include <ImfDoubleAttribute.h>
+#include <ImfFloatAttribute.h>
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
 #include <ImfInputFile.h>
+#include <ImfIntAttribute.h>
 #include <ImfOutputFile.h>
 #include <ImfStringAttribute.h>
 #include <fmt/format.h>
@@ -39,25 +42,36 @@ void validate(const std::filesystem::path& path, int width, int height,
   }
 }
 
+// Adds one attribute to `header`. A name clash with a built-in attribute
+// (e.g. "channels") or with an attribute already added would make OpenEXR
+// throw, or replace it, with a less clear message.
+template <typename Attribute, typename Value>
+void insert_attribute(Imf::Header& header, const std::filesystem::path& path,
+                      const std::string& name, const Value& value) {
+  if (name.empty()) throw InputError(path.string(), "", "EXR attribute name is empty");
+  if (header.find(name) != header.end())
+    throw InputError(path.string(), name, "EXR attribute name is reserved or given twice");
+  header.insert(name, Attribute(value));
+}
+
 }  // namespace
 
 void write_exr(const std::filesystem::path& path, int width, int height,
                const std::vector<ExrChannel>& channels,
-               const std::map<std::string, std::string>& string_attributes) {
+               const std::map<std::string, std::string>& string_attributes,
+               const std::map<std::string, double>& double_attributes,
+               const std::map<std::string, int>& int_attributes) {
   validate(path, width, height, channels);
   AtomicFile out(path);
   try {
     Imf::Header header(width, height, 1.0f, Imath::V2f(0, 0), 1.0f, Imf::INCREASING_Y,
                        Imf::ZIP_COMPRESSION);
-    for (const auto& [name, value] : string_attributes) {
-      if (name.empty()) throw InputError(path.string(), "", "EXR attribute name is empty");
-      // A name clash with a built-in attribute of another type (e.g.
-      // "channels") would make OpenEXR throw below with a less clear message.
-      if (header.find(name) != header.end()) {
-        throw InputError(path.string(), name, "EXR attribute name is reserved");
-      }
-      header.insert(name, Imf::StringAttribute(value));
-    }
+    for (const auto& [name, value] : string_attributes)
+      insert_attribute<Imf::StringAttribute>(header, path, name, value);
+    for (const auto& [name, value] : double_attributes)
+      insert_attribute<Imf::DoubleAttribute>(header, path, name, value);
+    for (const auto& [name, value] : int_attributes)
+      insert_attribute<Imf::IntAttribute>(header, path, name, value);
     Imf::FrameBuffer frame;
     const size_t x_stride = sizeof(float);
     const size_t y_stride = sizeof(float) * static_cast<size_t>(width);
@@ -102,9 +116,15 @@ ExrImage read_exr(const std::filesystem::path& path) {
     file.readPixels(window.min.y, window.max.y);
 
     for (auto it = header.begin(); it != header.end(); ++it) {
-      if (const auto* s = dynamic_cast<const Imf::StringAttribute*>(&it.attribute())) {
+      const Imf::Attribute& a = it.attribute();
+      if (const auto* s = dynamic_cast<const Imf::StringAttribute*>(&a))
         image.string_attributes[it.name()] = s->value();
-      }
+      else if (const auto* d = dynamic_cast<const Imf::DoubleAttribute*>(&a))
+        image.double_attributes[it.name()] = d->value();
+      else if (const auto* f = dynamic_cast<const Imf::FloatAttribute*>(&a))
+        image.double_attributes[it.name()] = f->value();
+      else if (const auto* i = dynamic_cast<const Imf::IntAttribute*>(&a))
+        image.int_attributes[it.name()] = i->value();
     }
     return image;
   } catch (const std::exception& e) {

@@ -24,10 +24,11 @@ std::vector<std::filesystem::path> write_sensor_image(const std::filesystem::pat
   std::vector<std::filesystem::path> written;
   const std::string prov = provenance.to_string();
   std::vector<ExrChannel> channels;
-  std::map<std::string, std::string> attributes = {
-      {"obscura.provenance", prov},
-      {"obscura.sensor", image.sensor},
-      {"obscura.time_s", fmt::format("{:.17g}", time_s)}};
+  std::map<std::string, std::string> attributes = {{"obscura.provenance", prov},
+                                                   {"obscura.sensor", image.sensor}};
+  // Numbers as numeric attributes (docs/formats.md, "Render outputs").
+  std::map<std::string, double> numbers = {{"obscura.time_s", time_s}};
+  std::map<std::string, int> counts;
   for (const BandImage& b : image.bands) {
     const std::string n = b.band.name();
     channels.push_back({n + ".radiance", b.radiance});
@@ -40,11 +41,13 @@ std::vector<std::filesystem::path> write_sensor_image(const std::filesystem::pat
       channels.push_back({n + ".radiance_stderr", b.radiance_stderr});
       attributes["obscura.units." + n + ".radiance_stderr"] = "W m-2 sr-1";
     }
-    attributes["obscura.band." + n] = fmt::format("{}:{} um, {} response points", b.band.lo_um(),
-                                                  b.band.hi_um(), b.band.response_table().size());
+    numbers["obscura.band." + n + ".min_um"] = b.band.lo_um();
+    numbers["obscura.band." + n + ".max_um"] = b.band.hi_um();
+    counts["obscura.band." + n + ".response_points"] =
+        static_cast<int>(b.band.response_table().size());
   }
   const auto exr = dir / (file_safe_name(image.sensor) + suffix + ".exr");
-  write_exr(exr, image.width, image.height, channels, attributes);
+  write_exr(exr, image.width, image.height, channels, attributes, numbers, counts);
   written.push_back(exr);
 
   const std::map<std::string, std::string> text = {{"obscura.provenance", prov}};

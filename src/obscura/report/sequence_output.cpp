@@ -9,6 +9,7 @@
 #include "obscura/core/parallel.h"
 #include "obscura/io/atomic_file.h"
 #include "obscura/io/stale_temporaries.h"
+#include "obscura/report/netcdf_render_output.h"
 #include "obscura/report/render_output.h"
 #include "obscura/report/screening_output.h"
 
@@ -129,7 +130,7 @@ nlohmann::json sensor_frame_json(const SensorFrameStats& s, const std::string& e
 
 // A folder where a file is to be written would fail only after the render,
 // with part of a frame on disk: refuse it before anything is rendered. Every
-// output is an .exr, .png, .csv or .json file directly in the folder.
+// output is an .exr, .png, .csv, .json or .nc file directly in the folder.
 void check_no_folder_takes_an_output_name(const std::filesystem::path& dir) {
   namespace fs = std::filesystem;
   std::error_code ec;
@@ -139,7 +140,8 @@ void check_no_folder_takes_an_output_name(const std::filesystem::path& dir) {
   if (ec) return;  // missing: created when the first file is written
   for (const fs::directory_entry& e : it) {
     const std::string ext = e.path().extension().string();
-    if (e.is_directory(ec) && (ext == ".exr" || ext == ".png" || ext == ".csv" || ext == ".json"))
+    if (e.is_directory(ec) &&
+        (ext == ".exr" || ext == ".png" || ext == ".csv" || ext == ".json" || ext == ".nc"))
       throw InputError(e.path().string(), "",
                        "is a folder where obscura writes a file: move it or choose another "
                        "output folder");
@@ -171,7 +173,12 @@ SequenceWriter::SequenceWriter(std::filesystem::path dir, const Scene& scene,
               {"threads", resolve_thread_count(scene.settings.threads)},
               {"times_s", times_s_},
               {"sensors", nlohmann::json::array()}};
+  if (has_output_format(scene.outputs, OutputFormat::kNetcdf))
+    netcdf_ = std::make_unique<NetcdfRenderOutput>(dir_ / kNetcdfRenderFile, scene, times_s_,
+                                                   provenance_, title);
 }
+
+SequenceWriter::~SequenceWriter() = default;
 
 void SequenceWriter::write_frame(const RenderedFrame& frame) {
   const std::string suffix = sequence_ ? fmt::format("_f{:04d}", frame.index) : "";
@@ -188,11 +195,14 @@ void SequenceWriter::write_frame(const RenderedFrame& frame) {
             contact_sheet_thumbnail(image.width, image.height, sheet_values(b), kSheetThumbnailPx);
     }
   }
+  if (netcdf_) netcdf_->write_frame(frame);
   frame_files_ = written_.size();
   frames_done_.push_back(frame.index);
 }
 
 void SequenceWriter::finish_failed(const std::string& error) {
+  netcdf_kept_ = netcdf_ && netcdf_->finish_failed(error);
+  if (netcdf_kept_) written_.push_back(netcdf_->path());
   summary_["failed"] = {
       {"error", error}, {"frames_completed", frames_done_}, {"frames_planned", times_s_.size()}};
   summary_["outputs"] = nlohmann::json::array();
@@ -246,6 +256,10 @@ void SequenceWriter::finish(const SequenceResult& result) {
     write_contact_sheet();
   }
   if (result.with_metrics) write_metrics(result);
+  if (netcdf_) {
+    netcdf_->finish(result);
+    written_.push_back(netcdf_->path());
+  }
   summary_["units"] = {
       {"radiance", "W m-2 sr-1"}, {"apparent_temperature", "K"}, {"transmittance", "1"}};
   const auto summary_path = dir_ / "summary.json";

@@ -9,13 +9,17 @@
 //  * with a target, metrics.csv and metrics.json, and for a sequence the
 //    metric plots and the target masks (report/screening_output.h);
 //  * summary.json: provenance, the scene, per frame and sensor the figures and
-//    timings, the screening summary, units.
+//    timings, the screening summary, units;
+//  * when the scene's outputs name netcdf (scene/output_formats.h), render.nc:
+//    every frame, sensor and band in one NetCDF-CF file
+//    (report/netcdf_render_output.h), written frame by frame.
 // Frames are written as the runner hands them over (write_frame), the rest by
 // finish(), or by finish_failed() when a frame fails. Every file goes through
 // an AtomicFile (temporary name, rename); temporaries that killed runs left in
 // the folder are removed when a writer is made (io/stale_temporaries.h).
 #include <cstddef>
 #include <filesystem>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -26,20 +30,27 @@
 
 namespace obscura {
 
+class NetcdfRenderOutput;
+
 class SequenceWriter {
  public:
   // `sequence`: a --time run (numbered frames and the sequence's own files);
   // else one frame. `title` heads the contact sheet (e.g. the scene file's name).
   SequenceWriter(std::filesystem::path dir, const Scene& scene, std::vector<double> times_s,
                  bool sequence, Provenance provenance, const std::string& title);
+  ~SequenceWriter();
 
   // The frame's files, and its thumbnails for the contact sheet.
   void write_frame(const RenderedFrame& frame);
   // The time series, contact sheet, metrics, plots, masks and summary.json.
   void finish(const SequenceResult& result);
   // After a failure part-way: summary.json records the error and the frames
-  // that completed (their files stay: each was written whole, atomically).
+  // that completed (their files stay: each was written whole, atomically);
+  // render.nc stays when its records are exactly frames 0 … k−1, and records
+  // the failure too (report/netcdf_render_output.h).
   void finish_failed(const std::string& error);
+  // Whether finish_failed() kept render.nc.
+  bool netcdf_kept() const { return netcdf_kept_; }
   // The frames written so far, in order.
   const std::vector<std::size_t>& frames_done() const { return frames_done_; }
 
@@ -70,6 +81,8 @@ class SequenceWriter {
   std::size_t frame_files_ = 0;
   std::vector<std::size_t> frames_done_;
   std::string metrics_text_;
+  std::unique_ptr<NetcdfRenderOutput> netcdf_;  // null unless the outputs name netcdf
+  bool netcdf_kept_ = false;
 };
 
 // What `obscura render` prints when it is done: per frame and sensor the

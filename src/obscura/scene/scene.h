@@ -9,6 +9,7 @@
 #include "obscura/scene/animated_cloud.h"
 #include "obscura/scene/atmosphere.h"
 #include "obscura/scene/metrics_settings.h"
+#include "obscura/scene/output_formats.h"
 #include "obscura/scene/render_settings.h"
 #include "obscura/scene/sensor.h"
 #include "obscura/scene/sky.h"
@@ -40,6 +41,8 @@ struct Scene {
   Atmosphere atmosphere;  // between the sensor and the scene; off unless the file has one
   MetricsSettings metrics;
   RenderSettings settings;
+  // Optional render outputs (the scene file's "outputs"; --format adds to them).
+  std::vector<OutputFormat> outputs;
   std::vector<std::filesystem::path> input_files;  // the scene file and the files it references
   nlohmann::json source;                           // the scene as read, for provenance
 };

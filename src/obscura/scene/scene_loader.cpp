@@ -398,6 +398,7 @@ Scene parse_scene(const nlohmann::json& doc, const std::filesystem::path& file) 
   if (auto m = root.optional_object("metrics")) scene.metrics = parse_metrics_settings(*m);
   if (auto sun = root.optional_object("sun")) scene.sun = parse_sun(*sun);
   if (auto r = root.optional_object("render")) scene.settings = parse_render_settings(*r);
+  scene.outputs = parse_output_formats(root);
   check_photon_memory(scene, root);
   if (scene.sun.enabled && !method_scatters(scene.settings.method))
     throw root.error(
