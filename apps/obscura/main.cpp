@@ -10,6 +10,7 @@
 #include "obscura/cluster/process_world.h"
 #include "obscura/core/check.h"
 #include "obscura/core/error.h"
+#include "obscura/core/interrupt.h"
 #include "obscura/core/version.h"
 #include "obscura/io/provenance.h"
 
@@ -52,6 +53,10 @@ int report_failure(const std::exception_ptr& failure, int rank) {
   } catch (const obscura::PeerFailure& e) {
     // Rank 0 reports what failed; this rank ends with the same status.
     return e.internal() ? obscura::cli::kExitInternal : obscura::cli::kExitInputError;
+  } catch (const obscura::Interrupted& e) {
+    // What completed is kept and was said by the command (a sequence's frames).
+    std::cerr << "obscura" << who << ": " << e.what() << "\n";
+    return 128 + e.signal();
   } catch (const obscura::InternalError& e) {
     return internal_error(e.what() + who);
   } catch (const obscura::Error& e) {
@@ -71,6 +76,7 @@ int report_failure(const std::exception_ptr& failure, int rank) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  obscura::install_interrupt_handlers();
   std::unique_ptr<obscura::ProcessWorld> world;
   try {
     world = std::make_unique<obscura::ProcessWorld>(argc, argv);

@@ -9,10 +9,13 @@
 #include "commands.h"
 #include "format_option.h"
 #include "memory_option.h"
+#include "obscura/core/byte_stream.h"
 #include "obscura/core/check.h"
 #include "obscura/core/error.h"
+#include "obscura/core/interrupt.h"
 #include "obscura/io/provenance.h"
 #include "obscura/report/sequence_output.h"
+#include "obscura/report/sequence_resume.h"
 #include "obscura/sequence/sequence_runner.h"
 #include "progress_printer.h"
 
@@ -32,7 +35,8 @@ void warn_about_blind_sensors(const std::vector<TargetMask>& masks) {
 
 // A sequence that fails part-way keeps every frame that completed (each was
 // written whole) and records the failure and those frames in summary.json;
-// the error still ends the run (exit 1), now saying what was kept.
+// the error still ends the run (exit 1, or 130/143 after SIGINT/SIGTERM),
+// now saying what was kept.
 SequenceResult render_or_keep_frames(Scene& scene, const std::vector<double>& times,
                                      const SequenceOptions& options, SequenceWriter& writer) {
   try {
@@ -44,11 +48,23 @@ SequenceResult render_or_keep_frames(Scene& scene, const std::vector<double>& ti
         " (kept the {} completed frames {}–{}{} and summary.json in {})",
         writer.frames_done().size(), writer.frames_done().front(), writer.frames_done().back(),
         writer.netcdf_kept() ? ", render.nc" : "", writer.dir().string());
+    if (const auto* stop = dynamic_cast<const Interrupted*>(&e))
+      throw Interrupted(stop->signal(), kept);
     if (const auto* input = dynamic_cast<const InputError*>(&e))
       throw InputError(input->file(), input->field(), input->detail() + kept);
     if (dynamic_cast<const InternalError*>(&e)) throw;
     throw Error(e.what() + kept);
   }
+}
+
+// Rank 0's list of completed frames, on every rank.
+std::vector<std::size_t> share_completed_frames(const ProcessGroup& processes,
+                                                const std::vector<std::size_t>& frames) {
+  ByteWriter out;
+  out.put_vector(frames);
+  const std::string bytes = processes.broadcast(out.take());
+  ByteReader in(bytes);
+  return in.get_vector<std::size_t>();
 }
 
 // One line per frame (or share of a frame) a rank has rendered, for runs
@@ -71,7 +87,7 @@ Command add_render_command(CLI::App& app, const Invocation& invocation) {
     double at = 0.0;
     std::string time_range;
     std::string share = "auto";
-    bool json = false;
+    bool json = false, resume = false;
     std::vector<std::string> formats;
   };
   auto o = std::make_shared<Options>();
@@ -94,6 +110,10 @@ Command add_render_command(CLI::App& app, const Invocation& invocation) {
                   "choice (docs/cluster.md)")
       ->check(CLI::IsMember({"auto", "frames", "tiles"}))
       ->capture_default_str();
+  cmd->add_flag("--resume", o->resume,
+                "Continue a --time sequence that stopped part-way in the output folder: the "
+                "frames it completed are read back, not rendered again (the same scene, inputs, "
+                "seed and times only)");
   cmd->add_flag("--json", o->json, "Print a JSON summary on stdout");
   add_format_option(cmd, o->formats);
   auto max_memory = std::make_shared<std::string>();
@@ -106,23 +126,34 @@ Command add_render_command(CLI::App& app, const Invocation& invocation) {
             if (!std::isfinite(o->at))
               throw InputError("", "--at", "must be a finite time in seconds");
             const bool sequence = !o->time_range.empty();
+            if (o->resume && !sequence)
+              throw InputError("", "--resume", "continues a --time sequence; give --time");
             const std::vector<double> times =
                 sequence ? parse_time_range(o->time_range) : std::vector<double>{o->at};
             // Every rank loads the scene; rank 0 alone makes the output folder.
             // A failure is shared, so that rank 0 reports it once.
             Scene scene;
             std::optional<SequenceWriter> writer;
+            std::vector<std::size_t> completed;  // by an earlier run (--resume)
             run_together(processes, [&] {
               scene = load_scene(o->scene);
               if (o->threads) scene.settings.threads = *o->threads;
               if (o->seed) scene.settings.seed = *o->seed;
               apply_formats(o->formats, scene);
-              if (root)
-                writer.emplace(o->output, scene, times, sequence,
-                               make_provenance(invocation.command_line, scene.settings.seed,
-                                               scene.input_files),
-                               std::filesystem::path(o->scene).filename().string());
+              if (!root) return;
+              Provenance provenance =
+                  make_provenance(invocation.command_line, scene.settings.seed, scene.input_files);
+              if (o->resume) completed = completed_frames(o->output, scene, times, provenance);
+              writer.emplace(o->output, scene, times, sequence, std::move(provenance),
+                             std::filesystem::path(o->scene).filename().string());
             });
+            if (o->resume) completed = share_completed_frames(processes, completed);
+            if (root && !completed.empty()) {
+              std::cerr << fmt::format(
+                  "obscura: resuming: {} of {} frames are complete in {}; rendering the rest\n",
+                  completed.size(), times.size(), o->output);
+              writer->record_resumed(completed);
+            }
             ProgressPrinter progress(scene, sequence);
             SequenceOptions options;
             options.processes = &processes;
@@ -133,6 +164,10 @@ Command add_render_command(CLI::App& app, const Invocation& invocation) {
               options.progress = [&](const RenderProgress& p) { progress.update(p); };
             options.on_masks = warn_about_blind_sensors;
             options.on_frame = [&](const RenderedFrame& frame) { writer->write_frame(frame); };
+            options.completed = completed;
+            options.load_completed = [&](std::size_t f) {
+              return read_completed_frame(o->output, scene, f, times[f]);
+            };
             if (!root) {
               render_sequence(scene, times, options);
               run_together(processes, [] {});  // rank 0 writes what remains

@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "obscura/core/error.h"
+#include "obscura/core/interrupt.h"
 #include "obscura/io/cloud_manifest.h"
 #include "obscura/io/json_reader.h"
 #include "obscura/io/netcdf_cf.h"
@@ -100,7 +101,10 @@ void write_manifest(const std::filesystem::path& path, const PrepareReport& r) {
   if (!out) throw Error("cannot write " + path.string());
 }
 
+// Progress, and where a SIGINT or SIGTERM stops a preparation (the
+// temporary folder is then removed).
 void say(const PrepareOptions& options, const std::string& line) {
+  throw_if_interrupted();
   if (options.progress) options.progress(line);
 }
 

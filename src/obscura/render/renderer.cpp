@@ -8,6 +8,7 @@
 
 #include "obscura/core/check.h"
 #include "obscura/core/error.h"
+#include "obscura/core/interrupt.h"
 #include "obscura/core/parallel.h"
 #include "obscura/core/rng.h"
 
@@ -168,6 +169,7 @@ SensorImage render(const Scene& scene, const Sensor& sensor, int sensor_index,
   std::atomic<int> rows_done{0};
 
   parallel_for(static_cast<std::size_t>(rows), scene.settings.threads, [&](std::size_t row) {
+    throw_if_interrupted();  // Ctrl-C stops a render at the next row (core/interrupt.h)
     const int y = options.row_offset + static_cast<int>(row) * options.row_stride;
     const std::unique_ptr<RayWorkspace> ws = integrator.make_workspace();
     PixelSums sums(bands.size());

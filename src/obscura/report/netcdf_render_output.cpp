@@ -171,16 +171,16 @@ NetcdfRenderOutput::NetcdfRenderOutput(const std::filesystem::path& path, const 
 
   // The coordinates that do not change: bands and pixel indices.
   for (const SensorVariables& s : sensors_) {
-    std::vector<std::string> names;
+    std::vector<std::string> band_names;
     std::vector<double> lo, hi, centre;
     for (const Band& b : s.bands) {
-      names.push_back(b.name());
+      band_names.push_back(b.name());
       lo.push_back(b.lo_um());
       hi.push_back(b.hi_um());
       centre.push_back(0.5 * (b.lo_um() + b.hi_um()));
     }
     const Slab start{0}, count{s.bands.size()};
-    f.put(s.band, start, count, names);
+    f.put(s.band, start, count, band_names);
     f.put(s.band_min, start, count, lo.data());
     f.put(s.band_max, start, count, hi.data());
     f.put(s.band_centre, start, count, centre.data());

@@ -200,6 +200,10 @@ void SequenceWriter::write_frame(const RenderedFrame& frame) {
   frames_done_.push_back(frame.index);
 }
 
+void SequenceWriter::record_resumed(const std::vector<std::size_t>& frames) {
+  summary_["resumed_frames"] = frames;
+}
+
 void SequenceWriter::finish_failed(const std::string& error) {
   netcdf_kept_ = netcdf_ && netcdf_->finish_failed(error);
   if (netcdf_kept_) written_.push_back(netcdf_->path());

@@ -51,6 +51,9 @@ class SequenceWriter {
   void finish_failed(const std::string& error);
   // Whether finish_failed() kept render.nc.
   bool netcdf_kept() const { return netcdf_kept_; }
+  // Records in summary.json that `frames` were read back from an earlier run
+  // (report/sequence_resume.h), not rendered by this one.
+  void record_resumed(const std::vector<std::size_t>& frames);
   // The frames written so far, in order.
   const std::vector<std::size_t>& frames_done() const { return frames_done_; }
 

@@ -8,7 +8,9 @@
 #include <optional>
 
 #include "obscura/core/byte_stream.h"
+#include "obscura/core/check.h"
 #include "obscura/core/error.h"
+#include "obscura/core/interrupt.h"
 #include "obscura/film/sensor_image_rows.h"
 #include "obscura/render/renderer.h"
 #include "obscura/sequence/frame_message.h"
@@ -144,14 +146,21 @@ class SequenceRun {
     });
     result_.with_metrics = !result_.masks.empty();
     if (group_.is_root() && options_.on_masks) options_.on_masks(result_.masks);
+    // The frames to render: all but those an earlier run completed.
+    completed_.assign(times_.size(), false);
+    for (std::size_t f : options_.completed) completed_.at(f) = true;
+    for (std::size_t f = 0; f < times_.size(); ++f)
+      if (!completed_[f]) todo_.push_back(f);
+    OBSCURA_CHECK(todo_.size() == times_.size() || options_.load_completed);
     const std::size_t ranks = static_cast<std::size_t>(group_.size());
     const bool by_frames = options_.sharing == WorkSharing::kFrames ||
-                           (options_.sharing == WorkSharing::kAuto && times_.size() >= ranks) ||
+                           (options_.sharing == WorkSharing::kAuto && todo_.size() >= ranks) ||
                            ranks == 1;
     if (by_frames)
-      for (std::size_t first = 0; first < times_.size(); first += ranks) frames_from(first);
+      for (std::size_t first = 0; first < todo_.size(); first += ranks) frames_from(first);
     else
-      for (std::size_t f = 0; f < times_.size(); ++f) frame_by_tiles(f);
+      for (std::size_t f : todo_) frame_by_tiles(f);
+    run_together(group_, [&] { take_completed_before(times_.size()); });
     if (result_.with_metrics) {
       result_.reference_time_s = screening_reference_time_s(scene_);
       result_.series =
@@ -161,8 +170,18 @@ class SequenceRun {
   }
 
  private:
+  // Rank 0: the completed frames before frame f, read back, in their turn.
+  void take_completed_before(std::size_t f) {
+    if (!group_.is_root()) return;
+    while (next_ < f) {
+      OBSCURA_CHECK_MSG(completed_[next_], "a frame to render was skipped");
+      take(options_.load_completed(next_));  // take() moves next_ on
+    }
+  }
+
   // Stages frame f and renders it, or this process's share of it.
   RenderedFrame stage_and_render(std::size_t f, const ProcessGroup& processes) {
+    throw_if_interrupted();
     const auto start = std::chrono::steady_clock::now();
     stage_scene(scene_, times_[f]);
     const double staging_s = seconds_since(start);
@@ -174,18 +193,20 @@ class SequenceRun {
     return frame;
   }
 
-  // Frames first … first + N − 1, one per process; rank 0 takes them in order.
+  // Frames todo_[first … first + N − 1], one per process; rank 0 takes them
+  // in order.
   void frames_from(std::size_t first) {
-    const std::size_t f = first + static_cast<std::size_t>(group_.rank());
+    const std::size_t k = first + static_cast<std::size_t>(group_.rank());
     std::optional<RenderedFrame> mine;
     std::exception_ptr failure;
-    if (f < times_.size()) try {
-        mine = stage_and_render(f, single_process());
+    if (k < todo_.size()) try {
+        mine = stage_and_render(todo_[k], single_process());
       } catch (...) {
         failure = std::current_exception();
       }
     if (group_.size() == 1) {
       if (failure) std::rethrow_exception(failure);
+      take_completed_before(todo_[k]);
       take(std::move(*mine));
       return;
     }
@@ -195,7 +216,7 @@ class SequenceRun {
     out.put_string(mine && !failure ? encode_frame(*mine) : std::string());
     const std::vector<std::string> outcomes = group_.gather(out.take());
     std::exception_ptr stop;
-    for (std::size_t r = 0; r < outcomes.size() && first + r < times_.size(); ++r) {
+    for (std::size_t r = 0; r < outcomes.size() && first + r < todo_.size(); ++r) {
       ByteReader in(outcomes[r]);
       const std::string failed = in.get_string();
       if (!failed.empty()) {
@@ -203,6 +224,7 @@ class SequenceRun {
         break;
       }
       try {
+        take_completed_before(todo_[first + r]);
         take(r == 0 ? std::move(*mine) : decode_frame(in.get_string(), scene_));
       } catch (...) {
         stop = std::current_exception();
@@ -226,6 +248,7 @@ class SequenceRun {
     share_failure(group_, failure);
     std::exception_ptr stop;
     if (group_.is_root()) try {
+        take_completed_before(f);
         take(std::move(*frame));
       } catch (...) {
         stop = std::current_exception();
@@ -248,6 +271,7 @@ class SequenceRun {
       }
     }
     if (options_.on_frame) options_.on_frame(frame);
+    next_ = frame.index + 1;
   }
 
   Scene& scene_;
@@ -255,6 +279,9 @@ class SequenceRun {
   const SequenceOptions& options_;
   const ProcessGroup& group_;
   SequenceResult result_;
+  std::vector<bool> completed_;    // per frame: an earlier run completed it
+  std::vector<std::size_t> todo_;  // the frames to render, in order
+  std::size_t next_ = 0;           // rank 0: the next frame to take
 };
 
 }  // namespace

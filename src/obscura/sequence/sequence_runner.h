@@ -113,6 +113,11 @@ struct SequenceOptions {
   // render_sequence with the same scene, times and sharing.
   const ProcessGroup* processes = &single_process();
   WorkSharing sharing = WorkSharing::kAuto;
+  // Frames an earlier run completed (a resumed run, report/sequence_resume.h):
+  // not rendered again; rank 0 gets each from load_completed in its turn and
+  // measures and hands it on like a rendered one. The same on every process.
+  std::vector<std::size_t> completed;
+  std::function<RenderedFrame(std::size_t frame)> load_completed;
 };
 
 // "A:B:STEP" in seconds: A, A + STEP, … up to B inclusive (to 1e-9 of a

@@ -9,6 +9,7 @@
 #include "obscura/core/byte_stream.h"
 #include "obscura/core/check.h"
 #include "obscura/core/error.h"
+#include "obscura/core/interrupt.h"
 #include "obscura/io/atomic_file.h"
 #include "obscura/io/json_reader.h"
 #include "obscura/prep/prepare.h"
@@ -73,6 +74,8 @@ CaseResult run_case(const StudySpec& spec, const StudyCase& c, const fs::path& c
     for (const ScreeningSeries& s : sequence.series) r.series.push_back(case_series(s));
     if (!spec.keep_clouds) fs::remove_all(cloud);
     r.ok = true;
+  } catch (const Interrupted&) {
+    throw;  // not the case's failure: the study stops, and --resume runs the case again
   } catch (const InternalError& e) {
     r.error = std::string("internal error: ") + e.what();
   } catch (const std::exception& e) {
@@ -173,6 +176,7 @@ StudyResult run_study(const StudySpec& spec, const fs::path& out_dir, const Stud
   try {
     for (std::size_t i = static_cast<std::size_t>(group.rank()); i < spec.case_count;
          i += static_cast<std::size_t>(group.size())) {
+      throw_if_interrupted();
       const StudyCase c = study_case(spec, i);
       const fs::path case_dir = out_dir / "cases" / c.id;
       const CaseDocuments docs = case_documents(spec, c, case_dir / "cloud" / "cloud.json");

@@ -29,7 +29,9 @@ std::string csv_cell(const std::string& text) {
   return q;
 }
 
-std::string number_cell(double v) { return std::isfinite(v) ? fmt::format("{}", v) : ""; }
+// Ten significant digits: the metrics come from interpolation between frames,
+// and 10.799999999999999 says no more than 10.8.
+std::string number_cell(double v) { return std::isfinite(v) ? fmt::format("{:.10g}", v) : ""; }
 std::string number_cell(const std::optional<double>& v) { return v ? number_cell(*v) : ""; }
 
 std::string label_cell(const nlohmann::json& label) {

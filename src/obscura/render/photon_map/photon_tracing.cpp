@@ -8,6 +8,7 @@
 
 #include "obscura/core/byte_stream.h"
 #include "obscura/core/check.h"
+#include "obscura/core/interrupt.h"
 #include "obscura/core/parallel.h"
 #include "obscura/core/sampling.h"
 #include "obscura/medium/phase_function.h"
@@ -340,6 +341,7 @@ TracedPhotons trace_photons(const Scene& scene, const SpectralNode& node, std::u
              ranks = static_cast<std::size_t>(processes.size());
   const std::size_t own_chunks = chunks / ranks + (rank < chunks % ranks ? 1 : 0);
   parallel_for(own_chunks, settings.threads, [&](std::size_t own) {
+    throw_if_interrupted();
     const std::size_t c = own * ranks + rank;
     MediumPoint scratch;
     const long long begin = static_cast<long long>(c) * kChunk, end = std::min(n, begin + kChunk);
