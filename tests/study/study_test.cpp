@@ -178,7 +178,7 @@ TEST_F(StudyTest, CasesSharedAmongRanksGiveTheSameTable) {
   });
   ASSERT_EQ(shared.cases.size(), alone.cases.size());
   for (std::size_t i = 0; i < alone.cases.size(); ++i) {
-    EXPECT_EQ(shared.cases[i].rank, static_cast<int>(i % 3));
+    EXPECT_TRUE(shared.cases[i].rank >= 0 && shared.cases[i].rank < 3);
     EXPECT_EQ(lwir(shared.cases[i]).time_to_screen_s, lwir(alone.cases[i]).time_to_screen_s);
     EXPECT_EQ(lwir(shared.cases[i]).screening_duration_s,
               lwir(alone.cases[i]).screening_duration_s);

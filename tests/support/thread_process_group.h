@@ -6,9 +6,13 @@
 // only the transport differs (cluster/process_world.cpp is tested by the
 // mpirun CLI tests).
 #include <barrier>
+#include <condition_variable>
 #include <exception>
 #include <functional>
+#include <map>
 #include <memory>
+#include <mutex>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
@@ -24,6 +28,10 @@ class ThreadProcessGroup final : public ProcessGroup {
     int size;
     std::vector<std::string> slots;
     std::barrier<> sync;
+    // Point-to-point messages: (destination, tag) → bytes.
+    std::mutex mail_mutex;
+    std::condition_variable mail_arrived;
+    std::map<std::pair<int, int>, std::string> mail;
   };
 
   ThreadProcessGroup(std::shared_ptr<Shared> shared, int rank)
@@ -46,8 +54,31 @@ class ThreadProcessGroup final : public ProcessGroup {
   std::string broadcast(const std::string& bytes) const override {
     return all_gather(rank_ == 0 ? bytes : std::string()).front();
   }
+  void send(int to, int tag, std::string bytes) const override {
+    std::lock_guard lock(shared_->mail_mutex);
+    shared_->mail[{to, tag}] = std::move(bytes);
+    shared_->mail_arrived.notify_all();
+  }
+  std::string receive(int tag) const override {
+    std::unique_lock lock(shared_->mail_mutex);
+    shared_->mail_arrived.wait(lock, [&] { return shared_->mail.count({rank_, tag}) > 0; });
+    return take(tag);
+  }
+  std::optional<std::string> try_receive(int tag) const override {
+    std::lock_guard lock(shared_->mail_mutex);
+    if (!shared_->mail.count({rank_, tag})) return std::nullopt;
+    return take(tag);
+  }
+  void finish_sends() const override {}  // delivered when sent
 
  private:
+  std::string take(int tag) const {  // with mail_mutex held
+    const auto it = shared_->mail.find({rank_, tag});
+    std::string bytes = std::move(it->second);
+    shared_->mail.erase(it);
+    return bytes;
+  }
+
   std::shared_ptr<Shared> shared_;
   int rank_;
 };

@@ -40,6 +40,10 @@ class MpiGroup final : public ProcessGroup {
   MpiGroup() {
     MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
     MPI_Comm_size(MPI_COMM_WORLD, &size_);
+    int* tag_ub = nullptr;
+    int found = 0;
+    MPI_Comm_get_attr(MPI_COMM_WORLD, MPI_TAG_UB, &tag_ub, &found);
+    max_tag_ = found && tag_ub ? *tag_ub : 32767;  // the standard's guaranteed minimum
   }
   int rank() const override { return rank_; }
   int size() const override { return size_; }
@@ -83,6 +87,40 @@ class MpiGroup final : public ProcessGroup {
     return out;
   }
 
+  void send(int to, int tag, std::string bytes) const override {
+    OBSCURA_CHECK(tag >= 0 && tag <= max_tag_);
+    pending_.push_back({std::make_unique<std::string>(std::move(bytes)), MPI_REQUEST_NULL});
+    Pending& p = pending_.back();
+    check_mpi(MPI_Isend(p.bytes->data(), message_count(p.bytes->size()), MPI_BYTE, to, tag,
+                        MPI_COMM_WORLD, &p.request),
+              "MPI_Isend");
+    // Completed sends free their buffers as others are queued.
+    std::erase_if(pending_, [](Pending& q) {
+      int done = 0;
+      MPI_Test(&q.request, &done, MPI_STATUS_IGNORE);
+      return done != 0;
+    });
+  }
+
+  std::string receive(int tag) const override {
+    MPI_Status status;
+    check_mpi(MPI_Probe(MPI_ANY_SOURCE, tag, MPI_COMM_WORLD, &status), "MPI_Probe");
+    return take(status);
+  }
+
+  std::optional<std::string> try_receive(int tag) const override {
+    int arrived = 0;
+    MPI_Status status;
+    check_mpi(MPI_Iprobe(MPI_ANY_SOURCE, tag, MPI_COMM_WORLD, &arrived, &status), "MPI_Iprobe");
+    if (!arrived) return std::nullopt;
+    return take(status);
+  }
+
+  void finish_sends() const override {
+    for (Pending& p : pending_) MPI_Wait(&p.request, MPI_STATUS_IGNORE);
+    pending_.clear();
+  }
+
  private:
   // Offsets of each rank's bytes in the gathered whole; the whole must itself
   // stay under MPI's int limit.
@@ -108,7 +146,24 @@ class MpiGroup final : public ProcessGroup {
     return parts;
   }
 
-  int rank_ = 0, size_ = 1;
+  // The message `status` announced.
+  std::string take(MPI_Status& status) const {
+    int count = 0;
+    MPI_Get_count(&status, MPI_BYTE, &count);
+    std::string bytes(static_cast<std::size_t>(count), '\0');
+    check_mpi(MPI_Recv(bytes.data(), count, MPI_BYTE, status.MPI_SOURCE, status.MPI_TAG,
+                       MPI_COMM_WORLD, MPI_STATUS_IGNORE),
+              "MPI_Recv");
+    return bytes;
+  }
+
+  struct Pending {
+    std::unique_ptr<std::string> bytes;  // stable while MPI reads it
+    MPI_Request request;
+  };
+
+  int rank_ = 0, size_ = 1, max_tag_ = 32767;
+  mutable std::vector<Pending> pending_;
 };
 
 }  // namespace

@@ -18,6 +18,16 @@ class SingleProcess final : public ProcessGroup {
   std::vector<std::string> all_gather(const std::string& bytes) const override { return {bytes}; }
   std::vector<std::string> gather(const std::string& bytes) const override { return {bytes}; }
   std::string broadcast(const std::string& bytes) const override { return bytes; }
+  // Alone, there is nobody to send to.
+  void send(int, int, std::string) const override {
+    OBSCURA_CHECK_MSG(false, "a message to another process in a run of one process");
+  }
+  std::string receive(int) const override {
+    OBSCURA_CHECK_MSG(false, "waiting for a message in a run of one process");
+    return {};
+  }
+  std::optional<std::string> try_receive(int) const override { return std::nullopt; }
+  void finish_sends() const override {}
 };
 
 // How a failure travels: its kind, and what is needed to make the same error

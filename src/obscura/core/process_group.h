@@ -11,6 +11,7 @@
 // process can end cleanly (a process that failed alone inside other
 // collectives would leave the rest waiting).
 #include <exception>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -31,6 +32,18 @@ class ProcessGroup {
   virtual std::vector<std::string> gather(const std::string& bytes) const = 0;
   // Rank 0's `bytes` on every process (`bytes` is ignored elsewhere).
   virtual std::string broadcast(const std::string& bytes) const = 0;
+
+  // Point to point, for work handed over as it completes rather than in
+  // lockstep. send() returns at once and keeps the bytes until they are
+  // delivered; every message sent must be received, and finish_sends() waits
+  // until this process's messages are. `tag` >= 0 names the message: one
+  // message per tag and destination.
+  virtual void send(int to, int tag, std::string bytes) const = 0;
+  // The message sent to this process under `tag` by any process: waits for it.
+  virtual std::string receive(int tag) const = 0;
+  // The same if it has arrived, else nullopt.
+  virtual std::optional<std::string> try_receive(int tag) const = 0;
+  virtual void finish_sends() const = 0;
 };
 
 // This process alone: rank 0 of 1, collectives that return their input.

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <map>
 #include <optional>
 
 #include "obscura/core/byte_stream.h"
@@ -156,8 +157,10 @@ class SequenceRun {
     const bool by_frames = options_.sharing == WorkSharing::kFrames ||
                            (options_.sharing == WorkSharing::kAuto && todo_.size() >= ranks) ||
                            ranks == 1;
-    if (by_frames)
-      for (std::size_t first = 0; first < todo_.size(); first += ranks) frames_from(first);
+    if (ranks == 1)
+      for (std::size_t f : todo_) frame_alone(f);
+    else if (by_frames)
+      frames_by_rank();
     else
       for (std::size_t f : todo_) frame_by_tiles(f);
     run_together(group_, [&] { take_completed_before(times_.size()); });
@@ -193,44 +196,113 @@ class SequenceRun {
     return frame;
   }
 
-  // Frames todo_[first … first + N − 1], one per process; rank 0 takes them
-  // in order.
-  void frames_from(std::size_t first) {
-    const std::size_t k = first + static_cast<std::size_t>(group_.rank());
-    std::optional<RenderedFrame> mine;
-    std::exception_ptr failure;
-    if (k < todo_.size()) try {
-        mine = stage_and_render(todo_[k], single_process());
-      } catch (...) {
-        failure = std::current_exception();
-      }
-    if (group_.size() == 1) {
-      if (failure) std::rethrow_exception(failure);
-      take_completed_before(todo_[k]);
-      take(std::move(*mine));
-      return;
-    }
-    // Each process's outcome: a failure, or its frame.
+  // Frame f on this process alone.
+  void frame_alone(std::size_t f) {
+    RenderedFrame frame = stage_and_render(f, single_process());
+    take_completed_before(f);
+    take(std::move(frame));
+  }
+
+  // One message per frame to render, todo_[k] by rank k mod N: a failure, or
+  // the frame.
+  static std::string outcome_message(const std::optional<RenderedFrame>& frame,
+                                     const std::exception_ptr& failure) {
     ByteWriter out;
     out.put_string(encode_failure(failure));
-    out.put_string(mine && !failure ? encode_frame(*mine) : std::string());
-    const std::vector<std::string> outcomes = group_.gather(out.take());
+    out.put_string(frame && !failure ? encode_frame(*frame) : std::string());
+    return out.take();
+  }
+
+  // By frames: rank r renders todo_[k] for k ≡ r (mod N), one after another
+  // with no step in lockstep, and sends each to rank 0 as it completes (tag
+  // k); a rank stops at its first failure. Rank 0 renders its own frames and
+  // between them takes, in frame order, whatever has arrived; then waits for
+  // the rest. After a failure (the first in frame order wins) it still
+  // receives every message the others send, so that every send completes.
+  void frames_by_rank() {
+    const std::size_t ranks = static_cast<std::size_t>(group_.size()),
+                      rank = static_cast<std::size_t>(group_.rank());
     std::exception_ptr stop;
-    for (std::size_t r = 0; r < outcomes.size() && first + r < todo_.size(); ++r) {
-      ByteReader in(outcomes[r]);
-      const std::string failed = in.get_string();
-      if (!failed.empty()) {
-        stop = r == 0 ? failure : decode_failure(failed, static_cast<int>(r));
+    if (!group_.is_root()) {
+      for (std::size_t k = rank; k < todo_.size(); k += ranks) {
+        std::optional<RenderedFrame> frame;
+        std::exception_ptr failure;
+        try {
+          frame = stage_and_render(todo_[k], single_process());
+        } catch (...) {
+          failure = std::current_exception();
+        }
+        group_.send(0, static_cast<int>(k), outcome_message(frame, failure));
+        if (failure) break;
+      }
+      group_.finish_sends();
+      share_failure(group_, nullptr);  // rank 0 has the failure, if any
+      return;
+    }
+    std::map<std::size_t, RenderedFrame> own;  // rendered here, not yet taken
+    std::vector<bool> failed(ranks, false);    // ranks that sent a failure
+    std::size_t next = 0;                      // todo_[next] is the next to take
+    // Takes todo_[next] if it is here (waiting for it when `wait`); false when not.
+    const auto take_next = [&](bool wait) {
+      const std::size_t r = next % ranks;
+      if (r == 0) {
+        const auto it = own.find(next);
+        if (it == own.end()) return false;
+        if (!stop) try {
+            take_completed_before(todo_[next]);
+            take(std::move(it->second));
+          } catch (...) {
+            stop = std::current_exception();
+          }
+        own.erase(it);
+      } else {
+        if (failed[r]) {  // sends nothing after its failure
+          ++next;
+          return true;
+        }
+        std::optional<std::string> message =
+            wait ? std::optional<std::string>(group_.receive(static_cast<int>(next)))
+                 : group_.try_receive(static_cast<int>(next));
+        if (!message) return false;
+        ByteReader in(*message);
+        const std::string failure = in.get_string();
+        if (!failure.empty()) {
+          failed[r] = true;
+          if (!stop) stop = decode_failure(failure, static_cast<int>(r));
+        } else if (!stop) {
+          try {
+            take_completed_before(todo_[next]);
+            take(decode_frame(in.get_string(), scene_));
+          } catch (...) {
+            stop = std::current_exception();
+          }
+        }
+      }
+      ++next;
+      return true;
+    };
+    for (std::size_t k = 0; k < todo_.size() && !stop; k += ranks) {
+      try {
+        own.emplace(k, stage_and_render(todo_[k], single_process()));
+      } catch (...) {
+        // Frames before this one, from the others, are still taken first.
+        while (next < k && take_next(true)) {
+        }
+        if (!stop) stop = std::current_exception();
         break;
       }
-      try {
-        take_completed_before(todo_[first + r]);
-        take(r == 0 ? std::move(*mine) : decode_frame(in.get_string(), scene_));
-      } catch (...) {
-        stop = std::current_exception();
-        break;
+      while (next < todo_.size() && take_next(false)) {
       }
     }
+    // The rest, in order; after a failure only received, so every send completes.
+    while (next < todo_.size()) {
+      if (next % ranks == 0 && !own.count(next)) {
+        ++next;  // rank 0 stopped before rendering it
+        continue;
+      }
+      take_next(true);
+    }
+    group_.finish_sends();
     share_failure(group_, stop);
   }
 

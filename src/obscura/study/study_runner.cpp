@@ -1,9 +1,13 @@
 #include "obscura/study/study_runner.h"
 
+#include <fcntl.h>
 #include <fmt/format.h>
+#include <unistd.h>
 
+#include <cerrno>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <exception>
 
 #include "obscura/core/byte_stream.h"
@@ -99,6 +103,28 @@ std::optional<CaseResult> stored_result(const fs::path& file, const std::string&
   }
 }
 
+fs::path claims_folder(const fs::path& out_dir) { return out_dir / ".claims"; }
+
+// Whether this process takes case i. Alone, it takes every case. Shared,
+// the first process to create the case's claim file (O_EXCL: atomic, on NFS
+// too) takes it, so a process that finishes early takes the next free case
+// and cases of unequal cost do not leave processes idle; which process ran a
+// case does not change its numbers.
+bool claim_case(const fs::path& out_dir, std::size_t index, const ProcessGroup& group) {
+  if (group.size() == 1) return true;
+  const fs::path claim = claims_folder(out_dir) / fmt::format("case_{:04d}", index);
+  const int fd = ::open(claim.c_str(), O_CREAT | O_EXCL | O_WRONLY, 0644);
+  if (fd < 0) {
+    if (errno == EEXIST) return false;
+    throw Error(
+        fmt::format("{}: cannot create a claim file: {}", claim.string(), std::strerror(errno)));
+  }
+  const std::string rank = std::to_string(group.rank()) + "\n";
+  [[maybe_unused]] const auto written = ::write(fd, rank.data(), rank.size());
+  ::close(fd);
+  return true;
+}
+
 void check_output_folder(const fs::path& out_dir, bool resume) {
   std::error_code ec;
   if (fs::exists(out_dir, ec) && !fs::is_directory(out_dir, ec))
@@ -166,7 +192,12 @@ StudyResult run_study(const StudySpec& spec, const fs::path& out_dir, const Stud
   const ProcessGroup& group = *options.processes;
   const auto start = Clock::now();
   run_together(group, [&] {
-    if (group.is_root()) check_output_folder(out_dir, options.resume);
+    if (group.is_root()) {
+      check_output_folder(out_dir, options.resume);
+      // Claims of an earlier, interrupted run are void.
+      fs::remove_all(claims_folder(out_dir));
+      if (group.size() > 1) fs::create_directories(claims_folder(out_dir));
+    }
   });
   // This process's cases, each with its result stored where it ran. A
   // failure outside a case (the folder cannot be written) ends the study on
@@ -174,9 +205,9 @@ StudyResult run_study(const StudySpec& spec, const fs::path& out_dir, const Stud
   std::vector<std::string> mine;
   std::exception_ptr failure;
   try {
-    for (std::size_t i = static_cast<std::size_t>(group.rank()); i < spec.case_count;
-         i += static_cast<std::size_t>(group.size())) {
+    for (std::size_t i = 0; i < spec.case_count; ++i) {
       throw_if_interrupted();
+      if (!claim_case(out_dir, i, group)) continue;
       const StudyCase c = study_case(spec, i);
       const fs::path case_dir = out_dir / "cases" / c.id;
       const CaseDocuments docs = case_documents(spec, c, case_dir / "cloud" / "cloud.json");
@@ -197,29 +228,31 @@ StudyResult run_study(const StudySpec& spec, const fs::path& out_dir, const Stud
     failure = std::current_exception();
   }
   share_failure(group, failure);
-  // Every result to rank 0, in case order (case i came from rank i mod N).
+  // Every result to rank 0, in case order.
   ByteWriter out;
   out.put<std::uint64_t>(mine.size());
   for (const std::string& m : mine) out.put_string(m);
   const std::vector<std::string> all = group.gather(out.take());
   StudyResult result;
   if (group.is_root()) {
-    std::vector<std::vector<CaseResult>> by_rank(all.size());
-    for (std::size_t r = 0; r < all.size(); ++r) {
-      ByteReader in(all[r]);
+    std::vector<std::optional<CaseResult>> by_case(spec.case_count);
+    for (const std::string& bytes : all) {
+      ByteReader in(bytes);
       const auto n = in.get<std::uint64_t>();
       for (std::uint64_t k = 0; k < n; ++k) {
         const nlohmann::json message = nlohmann::json::parse(in.get_string());
         CaseResult c = case_result_from_json(message);
         c.resumed = message.at("resumed").get<bool>();
-        by_rank[r].push_back(std::move(c));
+        OBSCURA_CHECK_MSG(c.index < spec.case_count && !by_case[c.index], "a case ran twice");
+        by_case[c.index] = std::move(c);
       }
     }
-    for (std::size_t i = 0; i < spec.case_count; ++i) {
-      const std::size_t r = i % all.size(), k = i / all.size();
-      OBSCURA_CHECK(k < by_rank[r].size() && by_rank[r][k].index == i);
-      result.cases.push_back(by_rank[r][k]);
+    for (std::optional<CaseResult>& c : by_case) {
+      OBSCURA_CHECK_MSG(c.has_value(), "a case did not run");
+      result.cases.push_back(std::move(*c));
     }
+    std::error_code ec;
+    fs::remove_all(claims_folder(out_dir), ec);
   }
   for (const CaseResult& c : result.cases) {
     result.failed += c.ok ? 0 : 1;

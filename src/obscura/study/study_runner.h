@@ -7,9 +7,11 @@
 // complete and was made from the same documents is not run again, so an
 // interrupted study loses only the cases that were running.
 //
-// Shared among processes (core/process_group.h): case i runs on rank
-// i mod N, each with all of that rank's threads; rank 0 gathers every result.
-// A case's numbers do not depend on where it ran.
+// Shared among processes (core/process_group.h): each process takes the next
+// case no other has claimed (a claim file in <out>/.claims, so the output
+// folder must be on a file system every process sees) and runs it with all
+// of its threads; rank 0 gathers every result. A case's numbers do not
+// depend on where it ran.
 #include <cstddef>
 #include <filesystem>
 #include <functional>
