@@ -187,7 +187,7 @@ TEST_F(SharedSequenceTest, AFrameFailingOnOneRankEndsTheRunAfterTheFramesBeforeI
     } catch (const InputError& e) {
       std::lock_guard lock(m);
       EXPECT_NE(std::string(e.what()).find("k1.vdb"), std::string::npos) << e.what();
-      EXPECT_NE(std::string(e.what()).find("rank 1"), std::string::npos) << e.what();
+      // Whichever rank drew frame 1 met it; another rank's error says which.
       ++root_errors;
     }
   });

@@ -3,7 +3,9 @@
 // resumed study that runs only what is missing, and the same table whatever
 // the number of processes.
 #include <gtest/gtest.h>
+#include <netcdf.h>
 
+#include <cmath>
 #include <fstream>
 #include <mutex>
 
@@ -134,6 +136,36 @@ TEST_F(StudyTest, EveryCaseIsPreparedRenderedAndMeasuredAndABrokenOneIsRecorded)
   EXPECT_NE(csv.find("1,case_0001,failed,250,Q,"), std::string::npos) << csv;
   EXPECT_NE(csv.find("\"\"Q\"\""), std::string::npos) << "quotes in the error doubled: " << csv;
   EXPECT_INPUT_ERROR(run_study(s, dir_ / "out"), "out", "", "--resume");
+
+  // The table as NetCDF-CF, read back with the netCDF library.
+  Provenance provenance;
+  provenance.command_line = "obscura study study.json";
+  write_study_results(s, r, dir_ / "out", provenance);
+  int nc = -1;
+  ASSERT_EQ(nc_open((dir_ / "out" / "results.nc").c_str(), NC_NOWRITE, &nc), NC_NOERR);
+  int var = -1;
+  ASSERT_EQ(nc_inq_varid(nc, "seeker_lwir_screening_duration_s", &var), NC_NOERR);
+  std::vector<double> duration(6);
+  ASSERT_EQ(nc_get_var_double(nc, var, duration.data()), NC_NOERR);
+  char units[8] = {};
+  ASSERT_EQ(nc_get_att_text(nc, var, "units", units), NC_NOERR);
+  EXPECT_STREQ(units, "s");
+  for (std::size_t i = 0; i < 6; ++i) {
+    if (r.cases[i].ok)
+      EXPECT_EQ(duration[i], *lwir(r.cases[i]).screening_duration_s) << i;
+    else
+      EXPECT_TRUE(std::isnan(duration[i])) << "failed case " << i << " is NaN";
+  }
+  ASSERT_EQ(nc_inq_varid(nc, "stability", &var), NC_NOERR);
+  std::vector<char*> stability(6);
+  ASSERT_EQ(nc_get_var_string(nc, var, stability.data()), NC_NOERR);
+  EXPECT_STREQ(stability[1], "Q");
+  nc_free_string(6, stability.data());
+  ASSERT_EQ(nc_inq_varid(nc, "wind_from_deg", &var), NC_NOERR);
+  std::vector<double> wind(6);
+  ASSERT_EQ(nc_get_var_double(nc, var, wind.data()), NC_NOERR);
+  EXPECT_EQ(wind, (std::vector<double>{250, 250, 250, 290, 290, 290}));
+  nc_close(nc);
 }
 
 TEST_F(StudyTest, AResumedStudyRunsOnlyTheCasesWithoutACompleteResult) {

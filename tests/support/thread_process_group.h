@@ -5,6 +5,7 @@
 // collectives meet at a barrier. The same code paths run as under mpirun;
 // only the transport differs (cluster/process_world.cpp is tested by the
 // mpirun CLI tests).
+#include <atomic>
 #include <barrier>
 #include <condition_variable>
 #include <exception>
@@ -32,6 +33,7 @@ class ThreadProcessGroup final : public ProcessGroup {
     std::mutex mail_mutex;
     std::condition_variable mail_arrived;
     std::map<std::pair<int, int>, std::string> mail;
+    std::atomic<std::uint64_t> counter{0};
   };
 
   ThreadProcessGroup(std::shared_ptr<Shared> shared, int rank)
@@ -70,6 +72,19 @@ class ThreadProcessGroup final : public ProcessGroup {
     return take(tag);
   }
   void finish_sends() const override {}  // delivered when sent
+  std::unique_ptr<SharedCounter> make_counter() const override {
+    struct Counter final : SharedCounter {
+      std::atomic<std::uint64_t>* value;
+      explicit Counter(std::atomic<std::uint64_t>* v) : value(v) {}
+      std::uint64_t fetch_add(std::uint64_t n) override { return value->fetch_add(n); }
+    };
+    // Nobody draws from the last counter once everyone is here; then rank 0
+    // starts the new one at 0 before anybody draws from it.
+    shared_->sync.arrive_and_wait();
+    if (rank_ == 0) shared_->counter = 0;
+    shared_->sync.arrive_and_wait();
+    return std::make_unique<Counter>(&shared_->counter);
+  }
 
  private:
   std::string take(int tag) const {  // with mail_mutex held

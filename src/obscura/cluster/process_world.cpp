@@ -116,6 +116,37 @@ class MpiGroup final : public ProcessGroup {
     return take(status);
   }
 
+  std::unique_ptr<SharedCounter> make_counter() const override {
+    // One 64-bit word on rank 0, none elsewhere; passive-target access.
+    class Counter final : public SharedCounter {
+     public:
+      explicit Counter(int rank) {
+        std::uint64_t* base = nullptr;
+        check_mpi(MPI_Win_allocate(rank == 0 ? sizeof(std::uint64_t) : 0, sizeof(std::uint64_t),
+                                   MPI_INFO_NULL, MPI_COMM_WORLD, &base, &window_),
+                  "MPI_Win_allocate");
+        if (rank == 0) *base = 0;
+        MPI_Barrier(MPI_COMM_WORLD);  // the word is 0 before anyone draws
+        check_mpi(MPI_Win_lock_all(MPI_MODE_NOCHECK, window_), "MPI_Win_lock_all");
+      }
+      ~Counter() override {
+        MPI_Win_unlock_all(window_);
+        MPI_Win_free(&window_);
+      }
+      std::uint64_t fetch_add(std::uint64_t n) override {
+        std::uint64_t before = 0;
+        check_mpi(MPI_Fetch_and_op(&n, &before, MPI_UINT64_T, 0, 0, MPI_SUM, window_),
+                  "MPI_Fetch_and_op");
+        check_mpi(MPI_Win_flush(0, window_), "MPI_Win_flush");
+        return before;
+      }
+
+     private:
+      MPI_Win window_ = MPI_WIN_NULL;
+    };
+    return std::make_unique<Counter>(rank_);
+  }
+
   void finish_sends() const override {
     for (Pending& p : pending_) MPI_Wait(&p.request, MPI_STATUS_IGNORE);
     pending_.clear();

@@ -28,6 +28,17 @@ class SingleProcess final : public ProcessGroup {
   }
   std::optional<std::string> try_receive(int) const override { return std::nullopt; }
   void finish_sends() const override {}
+  std::unique_ptr<SharedCounter> make_counter() const override {
+    struct Counter final : SharedCounter {
+      std::uint64_t value = 0;
+      std::uint64_t fetch_add(std::uint64_t n) override {
+        const std::uint64_t before = value;
+        value += n;
+        return before;
+      }
+    };
+    return std::make_unique<Counter>();
+  }
 };
 
 // How a failure travels: its kind, and what is needed to make the same error

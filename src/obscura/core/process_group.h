@@ -10,7 +10,9 @@
 // all of them at the same point, so that rank 0 can report it once and every
 // process can end cleanly (a process that failed alone inside other
 // collectives would leave the rest waiting).
+#include <cstdint>
 #include <exception>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -18,6 +20,16 @@
 #include "obscura/core/error.h"
 
 namespace obscura {
+
+// A counter every process of a group draws from, for handing out work to
+// whichever process is free (MPI: an atomic fetch-and-add on rank 0's memory
+// that needs no call from rank 0, MPI_Fetch_and_op).
+class SharedCounter {
+ public:
+  virtual ~SharedCounter() = default;
+  // The counter's value before adding `n` (it starts at 0).
+  virtual std::uint64_t fetch_add(std::uint64_t n) = 0;
+};
 
 class ProcessGroup {
  public:
@@ -44,6 +56,10 @@ class ProcessGroup {
   // The same if it has arrived, else nullopt.
   virtual std::optional<std::string> try_receive(int tag) const = 0;
   virtual void finish_sends() const = 0;
+
+  // A new counter at 0. Collective: every process makes it, and destroys it,
+  // together (MPI_Win_allocate / MPI_Win_free).
+  virtual std::unique_ptr<SharedCounter> make_counter() const = 0;
 };
 
 // This process alone: rank 0 of 1, collectives that return their input.

@@ -203,28 +203,32 @@ class SequenceRun {
     take(std::move(frame));
   }
 
-  // One message per frame to render, todo_[k] by rank k mod N: a failure, or
+  // The message for a frame a process rendered: its rank, then a failure or
   // the frame.
-  static std::string outcome_message(const std::optional<RenderedFrame>& frame,
-                                     const std::exception_ptr& failure) {
+  std::string outcome_message(const std::optional<RenderedFrame>& frame,
+                              const std::exception_ptr& failure) const {
     ByteWriter out;
+    out.put<std::int32_t>(group_.rank());
     out.put_string(encode_failure(failure));
     out.put_string(frame && !failure ? encode_frame(*frame) : std::string());
     return out.take();
   }
 
-  // By frames: rank r renders todo_[k] for k ≡ r (mod N), one after another
-  // with no step in lockstep, and sends each to rank 0 as it completes (tag
-  // k); a rank stops at its first failure. Rank 0 renders its own frames and
-  // between them takes, in frame order, whatever has arrived; then waits for
-  // the rest. After a failure (the first in frame order wins) it still
-  // receives every message the others send, so that every send completes.
+  // By frames: every process draws the next frame to render from a shared
+  // counter (todo_[k] for the k it draws), so a process that finishes a
+  // cheap frame takes the next one and frames of unequal cost leave nobody
+  // idle; each sends its frame to rank 0 as it completes (tag k) and stops
+  // drawing at its first failure. Rank 0 renders the frames it draws and
+  // between them takes, in frame order, whatever has arrived. Once any
+  // failure is known it ends the drawing (adding past the end), waits for
+  // every frame already drawn, and takes those before the first failure in
+  // frame order; every message sent is received, so every send completes.
+  // Which process rendered a frame does not change its pixels.
   void frames_by_rank() {
-    const std::size_t ranks = static_cast<std::size_t>(group_.size()),
-                      rank = static_cast<std::size_t>(group_.rank());
-    std::exception_ptr stop;
+    const std::size_t n = todo_.size();
+    std::unique_ptr<SharedCounter> counter = group_.make_counter();
     if (!group_.is_root()) {
-      for (std::size_t k = rank; k < todo_.size(); k += ranks) {
+      for (std::size_t k; (k = counter->fetch_add(1)) < n;) {
         std::optional<RenderedFrame> frame;
         std::exception_ptr failure;
         try {
@@ -236,73 +240,77 @@ class SequenceRun {
         if (failure) break;
       }
       group_.finish_sends();
+      counter.reset();
       share_failure(group_, nullptr);  // rank 0 has the failure, if any
       return;
     }
-    std::map<std::size_t, RenderedFrame> own;  // rendered here, not yet taken
-    std::vector<bool> failed(ranks, false);    // ranks that sent a failure
-    std::size_t next = 0;                      // todo_[next] is the next to take
-    // Takes todo_[next] if it is here (waiting for it when `wait`); false when not.
+    // Rank 0. Outcomes of the frames it drew, and of the others as they arrive.
+    struct Outcome {
+      std::optional<RenderedFrame> frame;
+      std::exception_ptr failure;
+    };
+    std::map<std::size_t, Outcome> own;
+    std::vector<bool> drawn_here(n, false);
+    std::exception_ptr stop;     // the first failure in frame order
+    bool failure_known = false;  // some failure has been seen: draw no more
+    std::size_t next = 0;        // todo_[next] is the next to take
+    std::size_t drawn = n;       // frames drawn by anyone (all, unless a failure ended it)
+    // Takes todo_[next] if its outcome is here (waiting when `wait`).
     const auto take_next = [&](bool wait) {
-      const std::size_t r = next % ranks;
-      if (r == 0) {
+      Outcome o;
+      if (drawn_here[next]) {
         const auto it = own.find(next);
-        if (it == own.end()) return false;
-        if (!stop) try {
-            take_completed_before(todo_[next]);
-            take(std::move(it->second));
-          } catch (...) {
-            stop = std::current_exception();
-          }
+        if (it == own.end()) return false;  // not rendered yet
+        o = std::move(it->second);
         own.erase(it);
       } else {
-        if (failed[r]) {  // sends nothing after its failure
-          ++next;
-          return true;
-        }
         std::optional<std::string> message =
             wait ? std::optional<std::string>(group_.receive(static_cast<int>(next)))
                  : group_.try_receive(static_cast<int>(next));
         if (!message) return false;
         ByteReader in(*message);
+        const int from = in.get<std::int32_t>();
         const std::string failure = in.get_string();
-        if (!failure.empty()) {
-          failed[r] = true;
-          if (!stop) stop = decode_failure(failure, static_cast<int>(r));
-        } else if (!stop) {
-          try {
-            take_completed_before(todo_[next]);
-            take(decode_frame(in.get_string(), scene_));
-          } catch (...) {
-            stop = std::current_exception();
-          }
+        if (!failure.empty())
+          o.failure = decode_failure(failure, from);
+        else if (!stop)
+          o.frame = decode_frame(in.get_string(), scene_);
+      }
+      if (o.failure) {
+        failure_known = true;
+        if (!stop) stop = o.failure;
+      } else if (!stop) {
+        try {
+          take_completed_before(todo_[next]);
+          take(std::move(*o.frame));
+        } catch (...) {
+          stop = std::current_exception();
+          failure_known = true;
         }
       }
       ++next;
       return true;
     };
-    for (std::size_t k = 0; k < todo_.size() && !stop; k += ranks) {
+    while (!failure_known) {
+      const std::size_t k = counter->fetch_add(1);
+      if (k >= n) break;
+      drawn_here[k] = true;
+      Outcome& o = own[k];
       try {
-        own.emplace(k, stage_and_render(todo_[k], single_process()));
+        o.frame = stage_and_render(todo_[k], single_process());
       } catch (...) {
-        // Frames before this one, from the others, are still taken first.
-        while (next < k && take_next(true)) {
-        }
-        if (!stop) stop = std::current_exception();
-        break;
+        o.failure = std::current_exception();
+        failure_known = true;
       }
-      while (next < todo_.size() && take_next(false)) {
+      while (next < n && take_next(false)) {
       }
     }
-    // The rest, in order; after a failure only received, so every send completes.
-    while (next < todo_.size()) {
-      if (next % ranks == 0 && !own.count(next)) {
-        ++next;  // rank 0 stopped before rendering it
-        continue;
-      }
-      take_next(true);
-    }
+    // After a failure nobody draws again: the frames drawn so far are all
+    // that will come.
+    if (failure_known) drawn = std::min<std::size_t>(counter->fetch_add(n), n);
+    while (next < drawn) take_next(true);
     group_.finish_sends();
+    counter.reset();
     share_failure(group_, stop);
   }
 

@@ -10,8 +10,9 @@
 // measured comes back as data (report/sequence_output.h writes it).
 //
 // Shared among processes (core/process_group.h, MPI ranks): by frames, each
-// process renders every N-th frame and hands it to rank 0; or by tiles, every
-// process renders every N-th row of each frame and a share of its photons.
+// process draws the next frame from a shared counter, renders it and hands it
+// to rank 0; or by tiles, every process renders every N-th row of each frame
+// and a share of its photons.
 // Rank 0 measures every frame and calls on_frame in frame order, so what it
 // gets is bit for bit what one process gets (docs/cluster.md).
 #include <cstddef>

@@ -5,7 +5,9 @@
 #include <cmath>
 #include <limits>
 
+#include "obscura/core/version.h"
 #include "obscura/io/atomic_file.h"
+#include "obscura/io/netcdf_output_file.h"
 #include "obscura/report/line_plot.h"
 
 namespace obscura {
@@ -93,6 +95,117 @@ std::string study_results_csv(const StudySpec& spec, const StudyResult& result) 
   return csv;
 }
 
+void write_study_netcdf(const std::filesystem::path& path, const StudySpec& spec,
+                        const StudyResult& result, const Provenance& provenance) {
+  const auto columns = study_series_columns(result);
+  const std::size_t n = result.cases.size();
+  NetcdfOutputFile f(path);
+  const int g = NetcdfOutputFile::kGlobal;
+  f.put_attribute(g, "Conventions", "CF-1.10");
+  f.put_attribute(g, "title", "obscura parameter study " + spec.file.filename().string());
+  f.put_attribute(g, "source", fmt::format("obscura {}", kVersion));
+  f.put_attribute(g, "history", provenance.created_utc + ": " + provenance.command_line);
+  f.put_attribute(g, "comment",
+                  "One entry per case along dimension case; each axis of the study is a "
+                  "variable of its labels; <sensor>_<band>_<figure> are the screening figures "
+                  "of docs/metrics.md (NaN: never screened, or the case failed).");
+  f.put_attribute(g, "provenance", provenance.to_string());
+  f.put_attribute(g, "times_s", spec.times_s);
+  const int dim = f.define_dimension("case", n);
+  const int index = f.define_variable("case", NcType::kInt, {dim});
+  f.put_attribute(index, "long_name", "case number");
+  const int id = f.define_variable("id", NcType::kString, {dim});
+  const int status = f.define_variable("status", NcType::kString, {dim});
+  f.put_attribute(status, "long_name", "ok, or failed (error says why)");
+  const int error = f.define_variable("error", NcType::kString, {dim});
+  const int seconds = f.define_variable("seconds", NcType::kDouble, {dim});
+  f.put_attribute(seconds, "units", "s");
+  f.put_attribute(seconds, "long_name", "wall time of the case");
+  // An axis whose labels are all numbers is a number variable, else text.
+  std::vector<int> axis_vars;
+  std::vector<bool> numeric;
+  for (const StudyAxis& a : spec.axes) {
+    bool all_numbers = true;
+    for (const nlohmann::json& l : a.labels) all_numbers = all_numbers && l.is_number();
+    numeric.push_back(all_numbers);
+    const int v = f.define_variable(a.name, all_numbers ? NcType::kDouble : NcType::kString, {dim});
+    f.put_attribute(v, "long_name",
+                    fmt::format("study axis: {} of {}", a.path,
+                                a.file == StudyAxis::File::kPrepare ? "prepare" : "scene"));
+    axis_vars.push_back(v);
+  }
+  struct Figure {
+    const char* name;
+    const char* units;
+    const char* long_name;
+  };
+  constexpr Figure figures[] = {
+      {"time_to_screen_s", "s", "time from the reference time to the first screened interval"},
+      {"screening_duration_s", "s", "total time screened"},
+      {"min_transmittance", "1", "lowest mean transmittance over the target"},
+      {"max_screened_fraction", "1", "largest fraction of target pixels screened"}};
+  std::vector<int> figure_vars;
+  for (const auto& [sensor, band] : columns)
+    for (const Figure& fig : figures) {
+      const int v = f.define_variable(
+          fmt::format("{}_{}_{}", column_word(sensor), column_word(band), fig.name),
+          NcType::kDouble, {dim});
+      f.put_attribute(v, "units", fig.units);
+      f.put_attribute(v, "long_name", fmt::format("{} ({} {})", fig.long_name, sensor, band));
+      f.put_attribute(v, "_FillValue", std::vector<double>{std::nan("")});
+      figure_vars.push_back(v);
+    }
+  f.end_definitions();
+  if (n > 0) {
+    const std::vector<std::size_t> start{0}, count{n};
+    std::vector<int> indices;
+    std::vector<std::string> ids, statuses, errors;
+    std::vector<double> secs;
+    for (const CaseResult& c : result.cases) {
+      indices.push_back(static_cast<int>(c.index));
+      ids.push_back(c.id);
+      statuses.push_back(c.ok ? "ok" : "failed");
+      errors.push_back(c.ok ? "" : c.error);
+      secs.push_back(c.seconds);
+    }
+    f.put(index, start, count, indices.data());
+    f.put(id, start, count, ids);
+    f.put(status, start, count, statuses);
+    f.put(error, start, count, errors);
+    f.put(seconds, start, count, secs.data());
+    for (std::size_t a = 0; a < spec.axes.size(); ++a) {
+      std::vector<double> numbers;
+      std::vector<std::string> texts;
+      for (const CaseResult& c : result.cases) {
+        const nlohmann::json& l = spec.axes[a].labels[study_case(spec, c.index).value[a]];
+        if (numeric[a])
+          numbers.push_back(l.get<double>());
+        else
+          texts.push_back(l.is_string() ? l.get<std::string>() : l.dump());
+      }
+      if (numeric[a])
+        f.put(axis_vars[a], start, count, numbers.data());
+      else
+        f.put(axis_vars[a], start, count, texts);
+    }
+    std::size_t v = 0;
+    const double nan = std::nan("");
+    for (const auto& [sensor, band] : columns) {
+      std::vector<std::vector<double>> values(4);
+      for (const CaseResult& c : result.cases) {
+        const CaseSeries* s = find_series(c, sensor, band);
+        values[0].push_back(s && s->time_to_screen_s ? *s->time_to_screen_s : nan);
+        values[1].push_back(s && s->screening_duration_s ? *s->screening_duration_s : nan);
+        values[2].push_back(s ? s->min_transmittance : nan);
+        values[3].push_back(s ? s->max_screened_fraction : nan);
+      }
+      for (const std::vector<double>& column : values)
+        f.put(figure_vars[v++], start, count, column.data());
+    }
+  }
+  f.commit();
+}
+
 std::vector<std::filesystem::path> write_study_results(const StudySpec& spec,
                                                        const StudyResult& result,
                                                        const std::filesystem::path& out_dir,
@@ -138,6 +251,9 @@ std::vector<std::filesystem::path> write_study_results(const StudySpec& spec,
   const auto json_path = out_dir / "results.json";
   write_text_file_atomic(json_path, doc.dump(2) + "\n");
   written.push_back(json_path);
+  const auto nc_path = out_dir / "results.nc";
+  write_study_netcdf(nc_path, spec, result, provenance);
+  written.push_back(nc_path);
 
   // The screening duration per case, one series per sensor and band.
   LinePlot plot;

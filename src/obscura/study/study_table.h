@@ -3,8 +3,10 @@
 // per case with its parameters (each axis's label), its status and error,
 // and per sensor and band the time to screen (s), the screening duration (s),
 // the lowest mean transmittance over the target (1) and the largest screened
-// fraction (1). Written as results.csv and results.json, and the screening
-// duration of every case as a plot (screening.png), each atomically.
+// fraction (1). Written as results.csv, results.json and results.nc (NetCDF-
+// CF: dimension case, one variable per column, units and long names, NaN
+// where a case failed or was never screened), and the screening duration of
+// every case as a plot (screening.png), each atomically.
 #include <filesystem>
 #include <string>
 #include <vector>
