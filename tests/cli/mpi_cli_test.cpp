@@ -12,10 +12,8 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "obscura/io/exr_writer.h"
-#include "obscura/io/vdb_keyframe.h"
-#include "obscura/medium/gaussian_puff.h"
 #include "support/cli_runner.h"
+#include "support/puff_sequence.h"
 #include "support/temp_dir_test.h"
 #include "support/tiny_study.h"
 
@@ -42,75 +40,13 @@ class MpiCliTest : public testing::TempDirTest {
  protected:
   void SetUp() override {
     TempDirTest::SetUp();
-    nlohmann::json frames = nlohmann::json::array();
-    for (int k = 0; k < 3; ++k) {
-      GaussianPuffSpec spec;
-      spec.center_m = {0, 0, 3};
-      spec.radius_m = 2;
-      spec.resolution = 10;
-      spec.wavelengths_um = {4, 10};
-      spec.peak_sigma_a = {0.2 + 0.3 * k, 0.3 + 0.3 * k};
-      spec.peak_sigma_s = {0.3, 0.2};
-      spec.g = {0.5, 0.3};
-      spec.temperature_excess_k = 10.0 * k;
-      const std::string name = "k" + std::to_string(k) + ".vdb";
-      write_cloud_keyframe(dir_ / name, make_gaussian_puff(spec), 2.0 * k);
-      frames.push_back({{"file", name}, {"time", 2.0 * k}});
-    }
-    const nlohmann::json lifecycle = {{"init_end", 0},
-                                      {"loop_start", 0},
-                                      {"loop_end", 1},
-                                      {"loop_wrap", 2.0},
-                                      {"extinction_start", 2}};
-    std::ofstream(dir_ / "cloud.json")
-        << nlohmann::json({{"keyframes", frames}, {"lifecycle", lifecycle}}).dump();
+    testing::write_growing_puff(dir_);
     for (const char* method : {"emission-absorption", "radiance-cache"}) {
       nlohmann::json render = {{"method", method}, {"seed", 3}, {"spectral_nodes_per_band", 2}};
       if (std::string(method) == "radiance-cache") render["radiance_cache"] = {{"photons", 4000}};
-      const nlohmann::json scene = {
-          {"sensors",
-           {{{"name", "ir"},
-             {"position", {0, -25, 3}},
-             {"look_at", {0, 0, 3}},
-             {"fov_deg", 30},
-             {"width", 20},
-             {"height", 13},
-             {"bands", {"mwir", "lwir"}}}}},
-          {"clouds", {{{"type", "animated"}, {"manifest", "cloud.json"}}}},
-          {"surfaces",
-           {{{"type", "ground"}, {"temperature", 290}},
-            {{"type", "box"},
-             {"name", "target"},
-             {"min", {-1, 4, 0}},
-             {"max", {1, 6, 3}},
-             {"temperature", 320},
-             {"target", true}}}},
-          {"sky", {{"temperature", 250}}},
-          {"render", render}};
+      const nlohmann::json scene = testing::growing_puff_scene(render, 20, 13, {"mwir", "lwir"});
       std::ofstream(dir_ / (std::string(method) + ".json")) << scene.dump(2);
     }
-  }
-
-  // Every channel of every EXR of `a` equals `b`'s, bit for bit, and the
-  // tables are the same bytes.
-  static void expect_same_outputs(const fs::path& a, const fs::path& b) {
-    int exr = 0;
-    for (const auto& entry : fs::directory_iterator(a)) {
-      if (entry.path().extension() != ".exr") continue;
-      ++exr;
-      const ExrImage x = read_exr(entry.path());
-      const ExrImage y = read_exr(b / entry.path().filename());
-      ASSERT_EQ(x.channels.size(), y.channels.size());
-      for (const auto& [name, pixels] : x.channels) {
-        ASSERT_TRUE(y.channels.count(name)) << name;
-        EXPECT_EQ(0, std::memcmp(pixels.data(), y.channels.at(name).data(),
-                                 pixels.size() * sizeof(float)))
-            << entry.path().filename() << " " << name;
-      }
-    }
-    EXPECT_GT(exr, 0);
-    for (const char* table : {"time_series.csv", "metrics.csv"})
-      EXPECT_EQ(testing::read_text_file(a / table), testing::read_text_file(b / table)) << table;
   }
 
   std::string render_args(const std::string& method, const fs::path& out) const {
@@ -124,8 +60,13 @@ TEST_F(MpiCliTest, FramesOnTwoRanksAreTheFramesOfOneProcess) {
   ASSERT_EQ(one.status, 0) << one.err;
   const auto two = run_mpi(2, render_args("emission-absorption", dir_ / "two"), dir_);
   ASSERT_EQ(two.status, 0) << two.err;
-  EXPECT_NE(two.err.find("rank 1/2: frame 2/3"), std::string::npos) << two.err;
-  expect_same_outputs(dir_ / "one", dir_ / "two");
+  // Each frame was rendered once, by whichever rank drew it.
+  for (const char* frame : {": frame 1/3 ", ": frame 2/3 ", ": frame 3/3 "}) {
+    const auto at = two.err.find(frame);
+    EXPECT_NE(at, std::string::npos) << frame << two.err;
+    EXPECT_EQ(two.err.find(frame, at + 1), std::string::npos) << frame << two.err;
+  }
+  testing::expect_same_render_outputs(dir_ / "one", dir_ / "two");
 }
 
 TEST_F(MpiCliTest, TilesAndPhotonsOnTwoRanksAreTheFramesOfOneProcess) {
@@ -134,7 +75,7 @@ TEST_F(MpiCliTest, TilesAndPhotonsOnTwoRanksAreTheFramesOfOneProcess) {
   const auto two = run_mpi(2, render_args("radiance-cache", dir_ / "two") + " --share tiles", dir_);
   ASSERT_EQ(two.status, 0) << two.err;
   EXPECT_NE(two.err.find("rank 1/2: rows of frame 3/3"), std::string::npos) << two.err;
-  expect_same_outputs(dir_ / "one", dir_ / "two");
+  testing::expect_same_render_outputs(dir_ / "one", dir_ / "two");
 }
 
 TEST_F(MpiCliTest, AFrameThatFailsIsReportedOnceAndTheFramesBeforeItAreKept) {

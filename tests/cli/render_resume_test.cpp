@@ -14,10 +14,8 @@
 #include <nlohmann/json.hpp>
 #include <thread>
 
-#include "obscura/io/exr_writer.h"
-#include "obscura/io/vdb_keyframe.h"
-#include "obscura/medium/gaussian_puff.h"
 #include "support/cli_runner.h"
+#include "support/puff_sequence.h"
 #include "support/temp_dir_test.h"
 
 namespace fs = std::filesystem;
@@ -29,51 +27,12 @@ class RenderResumeTest : public testing::TempDirTest {
  protected:
   void SetUp() override {
     TempDirTest::SetUp();
-    nlohmann::json frames = nlohmann::json::array();
-    for (int k = 0; k < 3; ++k) {
-      GaussianPuffSpec spec;
-      spec.center_m = {0, 0, 3};
-      spec.radius_m = 2;
-      spec.resolution = 10;
-      spec.wavelengths_um = {4, 10};
-      spec.peak_sigma_a = {0.2 + 0.3 * k, 0.3 + 0.3 * k};
-      spec.peak_sigma_s = {0.3, 0.2};
-      spec.g = {0.5, 0.3};
-      spec.temperature_excess_k = 10.0 * k;
-      const std::string name = "k" + std::to_string(k) + ".vdb";
-      write_cloud_keyframe(dir_ / name, make_gaussian_puff(spec), 2.0 * k);
-      frames.push_back({{"file", name}, {"time", 2.0 * k}});
-    }
-    const nlohmann::json lifecycle = {{"init_end", 0},
-                                      {"loop_start", 0},
-                                      {"loop_end", 1},
-                                      {"loop_wrap", 2.0},
-                                      {"extinction_start", 2}};
-    std::ofstream(dir_ / "cloud.json")
-        << nlohmann::json({{"keyframes", frames}, {"lifecycle", lifecycle}}).dump();
-    scene_ = {{"sensors",
-               {{{"name", "ir"},
-                 {"position", {0, -25, 3}},
-                 {"look_at", {0, 0, 3}},
-                 {"fov_deg", 30},
-                 {"width", 20},
-                 {"height", 13},
-                 {"bands", {"mwir", "lwir"}}}}},
-              {"clouds", {{{"type", "animated"}, {"manifest", "cloud.json"}}}},
-              {"surfaces",
-               {{{"type", "ground"}, {"temperature", 290}},
-                {{"type", "box"},
-                 {"name", "target"},
-                 {"min", {-1, 4, 0}},
-                 {"max", {1, 6, 3}},
-                 {"temperature", 320},
-                 {"target", true}}}},
-              {"sky", {{"temperature", 250}}},
-              {"render",
-               {{"method", "path-tracer"},
-                {"seed", 5},
-                {"samples_per_pixel", 4},
-                {"spectral_nodes_per_band", 2}}}};
+    testing::write_growing_puff(dir_);
+    scene_ = testing::growing_puff_scene({{"method", "path-tracer"},
+                                          {"seed", 5},
+                                          {"samples_per_pixel", 4},
+                                          {"spectral_nodes_per_band", 2}},
+                                         20, 13, {"mwir", "lwir"});
     write_scene();
   }
   void write_scene() const { std::ofstream(dir_ / "scene.json") << scene_.dump(2); }
@@ -83,22 +42,6 @@ class RenderResumeTest : public testing::TempDirTest {
            " --threads 1 " + more;
   }
 
-  static void expect_same_outputs(const fs::path& a, const fs::path& b) {
-    int exr = 0;
-    for (const auto& entry : fs::directory_iterator(a)) {
-      if (entry.path().extension() != ".exr") continue;
-      ++exr;
-      const ExrImage x = read_exr(entry.path()), y = read_exr(b / entry.path().filename());
-      ASSERT_EQ(x.channels.size(), y.channels.size());
-      for (const auto& [name, pixels] : x.channels)
-        EXPECT_EQ(0, std::memcmp(pixels.data(), y.channels.at(name).data(),
-                                 pixels.size() * sizeof(float)))
-            << entry.path().filename() << " " << name;
-    }
-    EXPECT_GT(exr, 0);
-    for (const char* table : {"time_series.csv", "metrics.csv"})
-      EXPECT_EQ(testing::read_text_file(a / table), testing::read_text_file(b / table)) << table;
-  }
   static void expect_no_temporaries(const fs::path& out) {
     for (const auto& e : fs::directory_iterator(out))
       EXPECT_NE(e.path().filename().string()[0], '.') << "temporary left: " << e.path();
@@ -178,7 +121,7 @@ TEST_F(RenderResumeTest, ASequenceStoppedBySigtermResumesToTheUninterruptedOutpu
   EXPECT_FALSE(after.contains("failed"));
   EXPECT_EQ(after["resumed_frames"].size(), kept);
   ASSERT_EQ(testing::run_cli(render(dir_ / "whole", "0:4:1"), dir_).status, 0);
-  expect_same_outputs(dir_ / "whole", out);
+  testing::expect_same_render_outputs(dir_ / "whole", out);
 }
 
 TEST_F(RenderResumeTest, AResumeOfAnotherRunIsRefused) {

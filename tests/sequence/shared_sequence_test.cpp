@@ -11,9 +11,8 @@
 #include <mutex>
 #include <nlohmann/json.hpp>
 
-#include "obscura/io/vdb_keyframe.h"
-#include "obscura/medium/gaussian_puff.h"
 #include "obscura/sequence/sequence_runner.h"
+#include "support/puff_sequence.h"
 #include "support/temp_dir_test.h"
 #include "support/thread_process_group.h"
 
@@ -24,28 +23,7 @@ class SharedSequenceTest : public testing::TempDirTest {
  protected:
   void SetUp() override {
     TempDirTest::SetUp();
-    nlohmann::json frames = nlohmann::json::array();
-    for (int k = 0; k < 3; ++k) {
-      GaussianPuffSpec spec;
-      spec.center_m = {0, 0, 3};
-      spec.radius_m = 2;
-      spec.resolution = 10;
-      spec.wavelengths_um = {4, 10};
-      spec.peak_sigma_a = {0.2 + 0.3 * k, 0.3 + 0.3 * k};
-      spec.peak_sigma_s = {0.3, 0.2};
-      spec.g = {0.5, 0.3};
-      spec.temperature_excess_k = 10.0 * k;
-      const std::string name = "k" + std::to_string(k) + ".vdb";
-      write_cloud_keyframe(dir_ / name, make_gaussian_puff(spec), 2.0 * k);
-      frames.push_back({{"file", name}, {"time", 2.0 * k}});
-    }
-    const nlohmann::json lifecycle = {{"init_end", 0},
-                                      {"loop_start", 0},
-                                      {"loop_end", 1},
-                                      {"loop_wrap", 2.0},
-                                      {"extinction_start", 2}};
-    std::ofstream(dir_ / "cloud.json")
-        << nlohmann::json({{"keyframes", frames}, {"lifecycle", lifecycle}}).dump();
+    testing::write_growing_puff(dir_);
   }
 
   // The scene, one per rank (each process loads its own).
@@ -55,25 +33,7 @@ class SharedSequenceTest : public testing::TempDirTest {
     if (method == "radiance-cache") render["radiance_cache"] = {{"photons", 4000}};
     if (method == "photonmap") render["photon_map"] = {{"photons", 3000}};
     if (method == "path-tracer") render["samples_per_pixel"] = 2;
-    const nlohmann::json doc = {{"sensors",
-                                 {{{"name", "ir"},
-                                   {"position", {0, -25, 3}},
-                                   {"look_at", {0, 0, 3}},
-                                   {"fov_deg", 30},
-                                   {"width", 16},
-                                   {"height", 11},
-                                   {"bands", {"lwir"}}}}},
-                                {"clouds", {{{"type", "animated"}, {"manifest", "cloud.json"}}}},
-                                {"surfaces",
-                                 {{{"type", "ground"}, {"temperature", 290}},
-                                  {{"type", "box"},
-                                   {"name", "target"},
-                                   {"min", {-1, 4, 0}},
-                                   {"max", {1, 6, 3}},
-                                   {"temperature", 320},
-                                   {"target", true}}}},
-                                {"sky", {{"temperature", 250}}},
-                                {"render", render}};
+    const nlohmann::json doc = testing::growing_puff_scene(render, 16, 11, {"lwir"});
     return parse_scene(doc, dir_ / "scene.json");
   }
 
