@@ -4,9 +4,12 @@
 
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <optional>
 
+#include "obscura/core/byte_stream.h"
+#include "obscura/core/check.h"
 #include "obscura/core/error.h"
 #include "obscura/core/parallel.h"
 #include "obscura/render/photon_map/photon_tracing.h"
@@ -57,6 +60,38 @@ double kernel_overlap(int r, int k) {
 
 }  // namespace
 
+namespace {
+
+// Shares a per-block loop among processes: body(block) runs for the blocks
+// b ≡ rank (mod N), in parallel on this process's threads, and every
+// process then receives every block's `per_block` values of `data`, so each
+// holds the same bits as if it had run every block itself.
+void for_blocks_shared(const ProcessGroup& processes, std::size_t blocks, int threads,
+                       std::vector<float>& data, std::size_t per_block,
+                       const std::function<void(std::size_t)>& body) {
+  const auto rank = static_cast<std::size_t>(processes.rank()),
+             ranks = static_cast<std::size_t>(processes.size());
+  const std::size_t own = blocks / ranks + (rank < blocks % ranks ? 1 : 0);
+  parallel_for(own, threads, [&](std::size_t i) { body(i * ranks + rank); });
+  if (ranks == 1) return;
+  ByteWriter out;
+  for (std::size_t b = rank; b < blocks; b += ranks)
+    out.put_vector(
+        std::vector<float>(data.begin() + b * per_block, data.begin() + (b + 1) * per_block));
+  const std::vector<std::string> all = processes.all_gather(out.take());
+  for (std::size_t r = 0; r < ranks; ++r) {
+    if (r == rank) continue;
+    ByteReader in(all[r]);
+    for (std::size_t b = r; b < blocks; b += ranks) {
+      const std::vector<float> values = in.get_vector<float>();
+      OBSCURA_CHECK(values.size() == per_block);
+      std::copy(values.begin(), values.end(), data.begin() + b * per_block);
+    }
+  }
+}
+
+}  // namespace
+
 RadianceCache::RadianceCache(const Scene& scene, const std::vector<SpectralNode>& nodes,
                              const ProcessGroup& processes)
     : lattice_(*scene.medium, scene.settings.radiance_cache.voxel_m,
@@ -103,23 +138,25 @@ void RadianceCache::compute_sun(const Scene& scene) {
   // then on or just under it (the ground beneath a cloud's lowest nodes),
   // and its values serve the cells above.
   const double near_m = std::sqrt(3.0) * lattice_.spacing_m();
-  parallel_for(lattice_.block_count(), scene.settings.threads, [&](std::size_t block) {
-    std::vector<double> tau(static_cast<std::size_t>(spectral_count_));
-    for (std::size_t slot = block * CacheLattice::kBlockNodes;
-         slot < (block + 1) * CacheLattice::kBlockNodes; ++slot) {
-      if (!lattice_.slot_inside(slot)) continue;
-      const Ray ray{lattice_.slot_position(slot), to_sun};
-      SurfaceHit hit;
-      const bool shaded = intersect_surfaces(scene.surfaces, ray, near_m,
-                                             std::numeric_limits<double>::infinity(), hit);
-      std::fill(tau.begin(), tau.end(), 0.0);
-      OpticalDepth depth(tau.data());
-      scene.medium->march_cells(ray, 0.0, std::numeric_limits<double>::infinity(), {}, depth);
-      float* out = sun_.data() + slot * per_slot;
-      for (int k = 0; k < spectral_count_; ++k) out[k] = static_cast<float>(tau[k]);
-      out[spectral_count_] = shaded ? 0.0f : 1.0f;
-    }
-  });
+  for_blocks_shared(
+      *processes_, lattice_.block_count(), scene.settings.threads, sun_,
+      per_slot * CacheLattice::kBlockNodes, [&](std::size_t block) {
+        std::vector<double> tau(static_cast<std::size_t>(spectral_count_));
+        for (std::size_t slot = block * CacheLattice::kBlockNodes;
+             slot < (block + 1) * CacheLattice::kBlockNodes; ++slot) {
+          if (!lattice_.slot_inside(slot)) continue;
+          const Ray ray{lattice_.slot_position(slot), to_sun};
+          SurfaceHit hit;
+          const bool shaded = intersect_surfaces(scene.surfaces, ray, near_m,
+                                                 std::numeric_limits<double>::infinity(), hit);
+          std::fill(tau.begin(), tau.end(), 0.0);
+          OpticalDepth depth(tau.data());
+          scene.medium->march_cells(ray, 0.0, std::numeric_limits<double>::infinity(), {}, depth);
+          float* out = sun_.data() + slot * per_slot;
+          for (int k = 0; k < spectral_count_; ++k) out[k] = static_cast<float>(tau[k]);
+          out[spectral_count_] = shaded ? 0.0f : 1.0f;
+        }
+      });
 }
 
 std::vector<float> RadianceCache::kernel_scattering(const Scene& scene) const {
@@ -160,41 +197,43 @@ std::vector<float> RadianceCache::kernel_scattering(const Scene& scene) const {
       gauss_u.push_back(u);
       gauss_w.push_back(0.5 * std::max(0.0, 1.0 - std::abs(u) / r) / r);
     }
-  parallel_for(lattice_.block_count(), scene.settings.threads, [&](std::size_t block) {
-    MediumPoint point;
-    std::vector<double> sum(static_cast<std::size_t>(ns));
-    for (std::size_t slot = block * CacheLattice::kBlockNodes;
-         slot < (block + 1) * CacheLattice::kBlockNodes; ++slot) {
-      if (!lattice_.slot_inside(slot)) continue;
-      const Vec3 node = lattice_.to_lattice(lattice_.slot_position(slot));
-      const int ni = static_cast<int>(std::lround(node.x)),
-                nj = static_cast<int>(std::lround(node.y)),
-                nk = static_cast<int>(std::lround(node.z));
-      std::fill(sum.begin(), sum.end(), 0.0);
-      if (aligned) {
-        for (int dk = -r; dk <= r; ++dk)
-          for (int dj = -r; dj <= r; ++dj)
-            for (int di = -r; di <= r; ++di) {
-              const std::size_t m = lattice_.slot_of(ni + di, nj + dj, nk + dk);
-              if (m == CacheLattice::kNoSlot) continue;
-              const double w = overlap[di + r] * overlap[dj + r] * overlap[dk + r];
-              for (int k = 0; k < ns; ++k) sum[k] += w * at_nodes[m * ns + k];
-            }
-      } else {
-        const Vec3 p0 = lattice_.slot_position(slot);
-        const double h = lattice_.spacing_m();
-        for (std::size_t c = 0; c < gauss_u.size(); ++c)
-          for (std::size_t b = 0; b < gauss_u.size(); ++b)
-            for (std::size_t a = 0; a < gauss_u.size(); ++a) {
-              const Vec3 offset(gauss_u[a] * h, gauss_u[b] * h, gauss_u[c] * h);
-              medium.coefficients_at(p0 + lattice_.rotation() * offset, point);
-              const double w = gauss_w[a] * gauss_w[b] * gauss_w[c];
-              for (int k = 0; k < ns; ++k) sum[k] += w * point.sigma_s[k];
-            }
-      }
-      for (int k = 0; k < ns; ++k) out[slot * ns + k] = static_cast<float>(sum[k]);
-    }
-  });
+  for_blocks_shared(
+      *processes_, lattice_.block_count(), scene.settings.threads, out,
+      static_cast<std::size_t>(ns) * CacheLattice::kBlockNodes, [&](std::size_t block) {
+        MediumPoint point;
+        std::vector<double> sum(static_cast<std::size_t>(ns));
+        for (std::size_t slot = block * CacheLattice::kBlockNodes;
+             slot < (block + 1) * CacheLattice::kBlockNodes; ++slot) {
+          if (!lattice_.slot_inside(slot)) continue;
+          const Vec3 node = lattice_.to_lattice(lattice_.slot_position(slot));
+          const int ni = static_cast<int>(std::lround(node.x)),
+                    nj = static_cast<int>(std::lround(node.y)),
+                    nk = static_cast<int>(std::lround(node.z));
+          std::fill(sum.begin(), sum.end(), 0.0);
+          if (aligned) {
+            for (int dk = -r; dk <= r; ++dk)
+              for (int dj = -r; dj <= r; ++dj)
+                for (int di = -r; di <= r; ++di) {
+                  const std::size_t m = lattice_.slot_of(ni + di, nj + dj, nk + dk);
+                  if (m == CacheLattice::kNoSlot) continue;
+                  const double w = overlap[di + r] * overlap[dj + r] * overlap[dk + r];
+                  for (int k = 0; k < ns; ++k) sum[k] += w * at_nodes[m * ns + k];
+                }
+          } else {
+            const Vec3 p0 = lattice_.slot_position(slot);
+            const double h = lattice_.spacing_m();
+            for (std::size_t c = 0; c < gauss_u.size(); ++c)
+              for (std::size_t b = 0; b < gauss_u.size(); ++b)
+                for (std::size_t a = 0; a < gauss_u.size(); ++a) {
+                  const Vec3 offset(gauss_u[a] * h, gauss_u[b] * h, gauss_u[c] * h);
+                  medium.coefficients_at(p0 + lattice_.rotation() * offset, point);
+                  const double w = gauss_w[a] * gauss_w[b] * gauss_w[c];
+                  for (int k = 0; k < ns; ++k) sum[k] += w * point.sigma_s[k];
+                }
+          }
+          for (int k = 0; k < ns; ++k) out[slot * ns + k] = static_cast<float>(sum[k]);
+        }
+      });
   return out;
 }
 
