@@ -36,8 +36,7 @@ class SharedSequenceTest : public testing::TempDirTest {
     nlohmann::json doc = testing::growing_puff_scene(render, 16, 11, {"lwir"});
     // A sun for the methods that take one: its shadow through the cloud is
     // shared by lattice block in the radiance cache.
-    if (method != "emission-absorption")
-      doc["sun"] = {{"azimuth_deg", 225}, {"elevation_deg", 35}};
+    if (method != "emission-absorption") doc["sun"] = {{"azimuth_deg", 225}, {"elevation_deg", 35}};
     return parse_scene(doc, dir_ / "scene.json");
   }
 
