@@ -10,6 +10,7 @@
 
 #include "obscura/core/error.h"
 #include "obscura/core/interrupt.h"
+#include "obscura/core/time_steps.h"
 #include "obscura/io/cloud_manifest.h"
 #include "obscura/io/json_reader.h"
 #include "obscura/io/netcdf_cf.h"
@@ -41,9 +42,9 @@ std::vector<double> parse_times(JsonObject& root) {
     JsonObject t = root.object(key);
     const double start = t.number("start"), end = t.number("end"), step = t.positive("step");
     if (!(end >= start)) throw t.error("end", "must be >= start");
-    const long long n = static_cast<long long>(std::floor((end - start) / step + 1e-9)) + 1;
-    if (n > 100000) throw t.error("step", "gives more than 100000 keyframes");
-    for (long long i = 0; i < n; ++i) times.push_back(start + i * step);
+    if (time_step_count(start, end, step) > 100000)
+      throw t.error("step", "gives more than 100000 keyframes");
+    times = time_steps(start, end, step);
     t.finish();
   }
   if (times.size() < 2)

@@ -12,6 +12,7 @@
 #include "obscura/core/check.h"
 #include "obscura/core/error.h"
 #include "obscura/core/interrupt.h"
+#include "obscura/core/time_steps.h"
 #include "obscura/film/sensor_image_rows.h"
 #include "obscura/render/renderer.h"
 #include "obscura/sequence/frame_message.h"
@@ -65,11 +66,8 @@ std::vector<double> parse_time_range(const std::string& text, const std::string&
   const double a = v[0], b = v[1], step = v[2];
   if (!(std::isfinite(a) && std::isfinite(b) && std::isfinite(step) && step > 0 && b >= a))
     throw bad("'{}' needs finite A <= B and STEP > 0");
-  const double n = std::floor((b - a) / step + 1e-9);
-  if (n > 100000) throw bad("'{}' gives more than 100000 frames");
-  std::vector<double> times;
-  for (int k = 0; k <= static_cast<int>(n); ++k) times.push_back(a + k * step);
-  return times;
+  if (time_step_count(a, b, step) > 100001) throw bad("'{}' gives more than 100000 frames");
+  return time_steps(a, b, step);
 }
 
 std::vector<TargetMask> scene_target_masks(const Scene& scene) {
@@ -151,18 +149,17 @@ class SequenceRun {
     completed_.assign(times_.size(), false);
     for (std::size_t f : options_.completed) completed_.at(f) = true;
     for (std::size_t f = 0; f < times_.size(); ++f)
-      if (!completed_[f]) todo_.push_back(f);
-    OBSCURA_CHECK(todo_.size() == times_.size() || options_.load_completed);
+      if (!completed_[f]) to_render_.push_back(f);
+    OBSCURA_CHECK(to_render_.size() == times_.size() || options_.load_completed);
     const std::size_t ranks = static_cast<std::size_t>(group_.size());
     const bool by_frames = options_.sharing == WorkSharing::kFrames ||
-                           (options_.sharing == WorkSharing::kAuto && todo_.size() >= ranks) ||
-                           ranks == 1;
+                           (options_.sharing == WorkSharing::kAuto && to_render_.size() >= ranks);
     if (ranks == 1)
-      for (std::size_t f : todo_) frame_alone(f);
+      for (std::size_t f : to_render_) frame_alone(f);
     else if (by_frames)
       frames_by_rank();
     else
-      for (std::size_t f : todo_) frame_by_tiles(f);
+      for (std::size_t f : to_render_) frame_by_tiles(f);
     run_together(group_, [&] { take_completed_before(times_.size()); });
     if (result_.with_metrics) {
       result_.reference_time_s = screening_reference_time_s(scene_);
@@ -215,7 +212,7 @@ class SequenceRun {
   }
 
   // By frames: every process draws the next frame to render from a shared
-  // counter (todo_[k] for the k it draws), so a process that finishes a
+  // counter (to_render_[k] for the k it draws), so a process that finishes a
   // cheap frame takes the next one and frames of unequal cost leave nobody
   // idle; each sends its frame to rank 0 as it completes (tag k) and stops
   // drawing at its first failure. Rank 0 renders the frames it draws and
@@ -225,14 +222,14 @@ class SequenceRun {
   // frame order; every message sent is received, so every send completes.
   // Which process rendered a frame does not change its pixels.
   void frames_by_rank() {
-    const std::size_t n = todo_.size();
+    const std::size_t n = to_render_.size();
     std::unique_ptr<SharedCounter> counter = group_.make_counter();
     if (!group_.is_root()) {
       for (std::size_t k; (k = counter->fetch_add(1)) < n;) {
         std::optional<RenderedFrame> frame;
         std::exception_ptr failure;
         try {
-          frame = stage_and_render(todo_[k], single_process());
+          frame = stage_and_render(to_render_[k], single_process());
         } catch (...) {
           failure = std::current_exception();
         }
@@ -253,9 +250,9 @@ class SequenceRun {
     std::vector<bool> drawn_here(n, false);
     std::exception_ptr stop;     // the first failure in frame order
     bool failure_known = false;  // some failure has been seen: draw no more
-    std::size_t next = 0;        // todo_[next] is the next to take
+    std::size_t next = 0;        // to_render_[next] is the next to take
     std::size_t drawn = n;       // frames drawn by anyone (all, unless a failure ended it)
-    // Takes todo_[next] if its outcome is here (waiting when `wait`).
+    // Takes to_render_[next] if its outcome is here (waiting when `wait`).
     const auto take_next = [&](bool wait) {
       Outcome o;
       if (drawn_here[next]) {
@@ -281,7 +278,7 @@ class SequenceRun {
         if (!stop) stop = o.failure;
       } else if (!stop) {
         try {
-          take_completed_before(todo_[next]);
+          take_completed_before(to_render_[next]);
           take(std::move(*o.frame));
         } catch (...) {
           stop = std::current_exception();
@@ -297,7 +294,7 @@ class SequenceRun {
       drawn_here[k] = true;
       Outcome& o = own[k];
       try {
-        o.frame = stage_and_render(todo_[k], single_process());
+        o.frame = stage_and_render(to_render_[k], single_process());
       } catch (...) {
         o.failure = std::current_exception();
         failure_known = true;
@@ -359,9 +356,9 @@ class SequenceRun {
   const SequenceOptions& options_;
   const ProcessGroup& group_;
   SequenceResult result_;
-  std::vector<bool> completed_;    // per frame: an earlier run completed it
-  std::vector<std::size_t> todo_;  // the frames to render, in order
-  std::size_t next_ = 0;           // rank 0: the next frame to take
+  std::vector<bool> completed_;         // per frame: an earlier run completed it
+  std::vector<std::size_t> to_render_;  // the frames to render, in order
+  std::size_t next_ = 0;                // rank 0: the next frame to take
 };
 
 }  // namespace

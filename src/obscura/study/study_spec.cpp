@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "obscura/core/error.h"
+#include "obscura/core/time_steps.h"
 #include "obscura/io/json_reader.h"
 #include "obscura/io/provenance.h"
 
@@ -26,11 +27,9 @@ std::vector<double> read_times(JsonObject& root) {
   const double start = t.number("start"), end = t.number("end"), step = t.positive("step");
   t.finish();
   if (end < start) throw root.error("times_s", "needs start <= end");
-  const double n = std::floor((end - start) / step + 1e-9);
-  if (n >= 100000) throw root.error("times_s", "gives more than 100000 frames");
-  std::vector<double> times;
-  for (int k = 0; k <= static_cast<int>(n); ++k) times.push_back(start + k * step);
-  return times;
+  if (time_step_count(start, end, step) > 100000)
+    throw root.error("times_s", "gives more than 100000 frames");
+  return time_steps(start, end, step);
 }
 
 StudyAxis read_axis(const nlohmann::json& value, const std::string& file, const std::string& at,
