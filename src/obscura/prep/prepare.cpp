@@ -7,10 +7,10 @@
 #include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <variant>
 
 #include "obscura/core/error.h"
 #include "obscura/core/interrupt.h"
-#include "obscura/core/time_steps.h"
 #include "obscura/io/cloud_manifest.h"
 #include "obscura/io/json_reader.h"
 #include "obscura/io/netcdf_cf.h"
@@ -18,8 +18,8 @@
 #include "obscura/io/vdb_keyframe.h"
 #include "obscura/io/vtk_structured_points.h"
 #include "obscura/optics/material.h"
-#include "obscura/prep/dispersion/dispersion_config.h"
 #include "obscura/prep/dispersion/dispersion_grid.h"
+#include "obscura/prep/prepare_config.h"
 #include "obscura/prep/suggested_lifecycle.h"
 #include "obscura/prep/voxelise.h"
 
@@ -29,31 +29,6 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
-}
-
-// "times_s": [t0, t1, ...] or {"start": a, "end": b, "step": h} (both ends included).
-std::vector<double> parse_times(JsonObject& root) {
-  const std::string key = "times_s";
-  const auto& raw = root.raw(key);
-  std::vector<double> times;
-  if (raw.is_array()) {
-    times = root.numbers(key);
-  } else {
-    JsonObject t = root.object(key);
-    const double start = t.number("start"), end = t.number("end"), step = t.positive("step");
-    if (!(end >= start)) throw t.error("end", "must be >= start");
-    if (time_step_count(start, end, step) > 100000)
-      throw t.error("step", "gives more than 100000 keyframes");
-    times = time_steps(start, end, step);
-    t.finish();
-  }
-  if (times.size() < 2)
-    throw root.error(key, "needs at least two times (a lifecycle needs two keyframes)");
-  for (std::size_t i = 0; i < times.size(); ++i)
-    if (!(times[i] >= 0) || (i > 0 && !(times[i] > times[i - 1])))
-      throw InputError(root.file(), fmt::format("{}/{}", root.path_of(key), i),
-                       "times must be >= 0 s and strictly increasing");
-  return times;
 }
 
 // The material's mass coefficients at the cloud's wavelengths. Where the
@@ -109,133 +84,57 @@ void say(const PrepareOptions& options, const std::string& line) {
   if (options.progress) options.progress(line);
 }
 
-// What the cloud is made of: the material, the humidity and the wavelengths
-// (into the report).
-struct MaterialSettings {
-  Material material;
-  double humidity = 0;
-};
-
-MaterialSettings read_material_settings(JsonObject& root, PrepareReport& report) {
-  const std::string& file = root.file();
-  MaterialSettings m;
-  const std::string material_name = root.string("material");
-  try {
-    m.material = load_material_by_name(material_name);
-  } catch (const InputError& e) {
-    throw InputError(file, "/material", e.what());
-  }
-  report.material = m.material.name;
-  m.humidity = root.number_or("relative_humidity", 0.0);
-  if (!(m.humidity >= 0 && m.humidity < 1))
-    throw root.error("relative_humidity", "must lie in [0, 1)");
-  report.wavelengths_um = root.numbers("wavelengths_um");
-  if (report.wavelengths_um.empty())
-    throw root.error("wavelengths_um", "needs at least one wavelength");
-  for (std::size_t i = 0; i < report.wavelengths_um.size(); ++i)
-    if (!(report.wavelengths_um[i] > 0) ||
-        (i > 0 && !(report.wavelengths_um[i] > report.wavelengths_um[i - 1])))
-      throw InputError(file, fmt::format("/wavelengths_um/{}", i),
-                       "must be > 0 µm and strictly increasing");
-  return m;
-}
-
-// Concentrations over time, from one of the sources, and what the keyframes
-// need to know of their origin.
+// Concentrations over time, from the configuration's source, and what the
+// keyframes need to know of their origin.
 struct Concentrations {
   ConcentrationSeries series;
   std::optional<double> burn_end_s;  // dispersion: when the last device stops
   double ambient_k = 288.15;
 };
 
-Concentrations dispersion_concentrations(JsonObject& root, const PrepareOptions& options,
-                                         PrepareReport& report) {
+Concentrations concentrations_of(const DispersionSource& s, const PrepareOptions& options,
+                                 PrepareReport& report) {
   Concentrations c;
-  DispersionConfig config = parse_dispersion_config(root.object("dispersion"));
-  config.source = root.file();
-  const std::vector<double> times = parse_times(root);
-  const double voxel = root.positive("voxel_size_m");
-  c.ambient_k = config.ambient_temperature_k;
+  c.ambient_k = s.config.ambient_temperature_k;
   double end = 0;
-  for (const SmokeDevice& d : config.devices) {
+  for (const SmokeDevice& d : s.config.devices) {
     end = std::max(end, d.start_s + d.burn_time_s);
     report.released_mass_g += d.released_mass_g();
   }
   c.burn_end_s = end;
-  say(options,
-      fmt::format("dispersion: {} devices, {} frames from {} to {} s at {} m voxels",
-                  config.devices.size(), times.size(), times.front(), times.back(), voxel));
-  c.series = dispersion_series(config, times, voxel, options.threads);
+  say(options, fmt::format("dispersion: {} devices, {} frames from {} to {} s at {} m voxels",
+                           s.config.devices.size(), s.times_s.size(), s.times_s.front(),
+                           s.times_s.back(), s.voxel_size_m));
+  c.series = dispersion_series(s.config, s.times_s, s.voxel_size_m, options.threads);
   return c;
 }
 
-// A file the configuration names: a relative path is relative to the
-// configuration's folder.
-std::filesystem::path config_relative(const std::filesystem::path& config_path,
-                                      const std::string& name) {
-  std::filesystem::path p = name;
-  if (p.is_relative()) p = config_path.parent_path() / p;
-  return p;
-}
-
-Concentrations vtk_concentrations(JsonObject& root, const std::filesystem::path& config_path,
-                                  const PrepareOptions& options) {
+Concentrations concentrations_of(const VtkSource& s, const PrepareOptions& options,
+                                 PrepareReport&) {
   Concentrations c;
-  JsonObject vtk = root.object("vtk");
-  VtkArrayNames names;
-  names.concentration = vtk.string_or("concentration", names.concentration);
-  names.temperature = vtk.string_or("temperature", "");
-  names.concentration_to_g_m3 = vtk.positive_or("concentration_to_g_m3", 1.0);
-  const auto& frames = vtk.array("frames");
-  std::vector<std::pair<double, std::string>> time_and_path;
-  for (std::size_t i = 0; i < frames.size(); ++i) {
-    JsonObject f(frames[i], root.file(), fmt::format("{}/{}", vtk.path_of("frames"), i));
-    const double t = f.number("time_s");
-    time_and_path.emplace_back(t, config_relative(config_path, f.string("file")).string());
-    f.finish();
-  }
-  c.ambient_k = vtk.positive_or("ambient_temperature_k", c.ambient_k);
-  vtk.finish();
-  say(options, fmt::format("VTK: {} frames", time_and_path.size()));
-  c.series = read_vtk_series(time_and_path, names);
+  c.ambient_k = s.ambient_temperature_k;
+  say(options, fmt::format("VTK: {} frames", s.time_and_path.size()));
+  c.series = read_vtk_series(s.time_and_path, s.names);
   return c;
 }
 
-Concentrations netcdf_concentrations(JsonObject& root, const std::filesystem::path& config_path,
-                                     const PrepareOptions& options) {
+Concentrations concentrations_of(const NetcdfSource& s, const PrepareOptions& options,
+                                 PrepareReport&) {
   Concentrations c;
-  JsonObject nc = root.object("netcdf");
-  NetcdfReadOptions o;
-  const std::filesystem::path p = config_relative(config_path, nc.string("file"));
-  o.concentration = nc.string_or("concentration", o.concentration);
-  o.temperature = nc.string_or("temperature", "");
-  o.concentration_units_if_missing = nc.string_or("concentration_units_if_missing", "");
-  o.missing_concentration_as_zero = nc.boolean_or("missing_concentration_as_zero", false);
-  c.ambient_k = nc.positive_or("ambient_temperature_k", c.ambient_k);
-  nc.finish();
-  say(options, "NetCDF: " + p.string());
-  c.series = read_netcdf_cf(p, o);
+  c.ambient_k = s.ambient_temperature_k;
+  say(options, "NetCDF: " + s.file.string());
+  c.series = read_netcdf_cf(s.file, s.options);
   return c;
 }
 
-// The "source" the configuration names; at least two frames. Fills in the
-// report's times and grid.
-Concentrations read_concentrations(JsonObject& root, const std::filesystem::path& config_path,
-                                   const PrepareOptions& options, PrepareReport& report) {
-  const std::string source = root.string("source");
-  Concentrations c;
-  if (source == "dispersion") {
-    c = dispersion_concentrations(root, options, report);
-  } else if (source == "vtk") {
-    c = vtk_concentrations(root, config_path, options);
-  } else if (source == "netcdf") {
-    c = netcdf_concentrations(root, config_path, options);
-  } else {
-    throw root.error(
-        "source", fmt::format("unknown source '{}' (expected dispersion, vtk or netcdf)", source));
-  }
+// The source's frames; at least two. Fills in the report's times and grid.
+Concentrations read_concentrations(const PrepareConfig& config, const PrepareOptions& options,
+                                   PrepareReport& report) {
+  Concentrations c =
+      std::visit([&](const auto& source) { return concentrations_of(source, options, report); },
+                 config.source);
   if (c.series.frames.size() < 2)
-    throw InputError(root.file(), "/source",
+    throw InputError(config.file, "/source",
                      "needs at least two frames (a lifecycle needs two keyframes)");
   for (const auto& f : c.series.frames) report.times_s.push_back(f.time_s);
   report.dims = c.series.frames[0].concentration_g_m3.dims;
@@ -244,19 +143,12 @@ Concentrations read_concentrations(JsonObject& root, const std::filesystem::path
 }
 
 // The lifecycle: given, or suggested from the timing; validated.
-void read_lifecycle(JsonObject& root, std::optional<double> burn_end_s, PrepareReport& report) {
-  if (auto lc = root.optional_object("lifecycle")) {
-    report.lifecycle.init_end = static_cast<int>(lc->integer("init_end"));
-    report.lifecycle.loop_start = static_cast<int>(lc->integer("loop_start"));
-    report.lifecycle.loop_end = static_cast<int>(lc->integer("loop_end"));
-    report.lifecycle.loop_wrap_s = lc->number("loop_wrap");
-    report.lifecycle.extinction_start = static_cast<int>(lc->integer("extinction_start"));
-    lc->finish();
-    report.lifecycle_suggested = false;
-  } else {
-    report.lifecycle = suggest_lifecycle(report.times_s, burn_end_s);
-  }
-  Lifecycle(report.times_s, report.lifecycle, root.file() + ": /lifecycle");  // validates
+void settle_lifecycle(const PrepareConfig& config, std::optional<double> burn_end_s,
+                      PrepareReport& report) {
+  report.lifecycle_suggested = !config.lifecycle;
+  report.lifecycle =
+      config.lifecycle ? *config.lifecycle : suggest_lifecycle(report.times_s, burn_end_s);
+  Lifecycle(report.times_s, report.lifecycle, config.file + ": /lifecycle");  // validates
 }
 
 // The keyframes and the manifest, written into a temporary sibling folder
@@ -315,35 +207,26 @@ PrepareReport prepare_cloud(const std::filesystem::path& config_path,
 PrepareReport prepare_cloud(const nlohmann::json& doc, const std::filesystem::path& config_path,
                             const std::filesystem::path& out_dir, const PrepareOptions& options) {
   namespace fs = std::filesystem;
-  const std::string file = config_path.string();
-  JsonObject root(doc, file, "");
-  PrepareReport report;
-
   if (fs::exists(out_dir) && !(fs::is_directory(out_dir) && fs::is_empty(out_dir)))
     throw InputError(out_dir.string(), "",
                      "exists and is not an empty folder; remove it or choose another");
-
-  root.string_or("description", "");
-  const MaterialSettings material = read_material_settings(root, report);
-
-  // Which keyframe form to write (docs/formats.md): both read to the same grids.
-  const std::string output_form = root.string_or("output_form", "spectral");
-  if (output_form != "spectral" && output_form != "species")
-    throw root.error("output_form",
-                     fmt::format("unknown form '{}' (expected spectral or species)", output_form));
-  report.output_form = output_form;
+  const PrepareConfig config = read_prepare_config(doc, config_path);
+  PrepareReport report;
+  report.material = config.material.name;
+  report.wavelengths_um = config.wavelengths_um;
+  report.output_form = config.output_form;
 
   const auto t0 = Clock::now();
-  const Concentrations concentrations = read_concentrations(root, config_path, options, report);
+  const Concentrations concentrations = read_concentrations(config, options, report);
   report.seconds_concentrations = since(t0);
-  read_lifecycle(root, concentrations.burn_end_s, report);
-  root.finish();
+  settle_lifecycle(config, concentrations.burn_end_s, report);
 
   const auto t1 = Clock::now();
-  const SpeciesOptics optics = species_optics(material.material, report.wavelengths_um,
-                                              material.humidity, options.threads, report.warnings);
+  const SpeciesOptics optics =
+      species_optics(config.material, report.wavelengths_um, config.relative_humidity,
+                     options.threads, report.warnings);
   report.seconds_optics = since(t1);
-  write_cloud(out_dir, concentrations, optics, output_form, file, options, report);
+  write_cloud(out_dir, concentrations, optics, config.output_form, config.file, options, report);
   report.manifest = out_dir / "cloud.json";
   return report;
 }

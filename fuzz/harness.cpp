@@ -1,0 +1,97 @@
+#include "harness.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <exception>
+#include <fstream>
+#include <string>
+
+#include "obscura/core/check.h"
+#include "obscura/core/error.h"
+#include "obscura/core/memory_limit.h"
+
+namespace obscura::fuzz {
+namespace {
+
+std::vector<Harness>& registry() {
+  static std::vector<Harness> r;
+  return r;
+}
+
+void remove_scratch();
+
+const std::filesystem::path& scratch_dir() {
+  static const std::filesystem::path dir = [] {
+    const std::filesystem::path shm = "/dev/shm";
+    const std::filesystem::path base =
+        std::filesystem::is_directory(shm) ? shm : std::filesystem::temp_directory_path();
+    std::filesystem::path d = base / ("obscura-fuzz-" + std::to_string(::getpid()));
+    std::filesystem::create_directories(d);
+    std::atexit(remove_scratch);
+    return d;
+  }();
+  return dir;
+}
+
+void remove_scratch() {
+  std::error_code ec;
+  std::filesystem::remove_all(scratch_dir(), ec);
+}
+
+}  // namespace
+
+void prepare_process() { set_memory_limit(kFuzzMemoryLimitBytes, MemoryLimitSource::kCommandLine); }
+
+bool register_harness(const char* name, HarnessFunction run) {
+  auto& r = registry();
+  r.push_back({name, run});
+  std::sort(r.begin(), r.end(),
+            [](const Harness& a, const Harness& b) { return std::string_view(a.name) < b.name; });
+  return true;
+}
+
+const std::vector<Harness>& harnesses() { return registry(); }
+
+const Harness* find_harness(std::string_view name) {
+  for (const Harness& h : registry())
+    if (name == h.name) return &h;
+  return nullptr;
+}
+
+std::filesystem::path scratch_file(std::string_view name, std::string_view bytes) {
+  const std::filesystem::path path = scratch_dir() / std::string(name);
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  out.close();
+  if (!out) {
+    std::fprintf(stderr, "fuzz: cannot write the scratch file %s\n", path.c_str());
+    std::abort();
+  }
+  return path;
+}
+
+void expect_clean(std::string_view harness, const std::function<void()>& read) {
+  try {
+    read();
+  } catch (const obscura::InternalError& e) {
+    std::fprintf(stderr, "fuzz %.*s: internal error: %s\n", static_cast<int>(harness.size()),
+                 harness.data(), e.what());
+    std::abort();
+  } catch (const obscura::Error&) {
+    // The outcome a bad input should have: a message naming file and field.
+  } catch (const std::exception& e) {
+    std::fprintf(stderr,
+                 "fuzz %.*s: not an obscura::Error (the tool would say 'internal error'): %s\n",
+                 static_cast<int>(harness.size()), harness.data(), e.what());
+    std::abort();
+  } catch (...) {
+    std::fprintf(stderr, "fuzz %.*s: an exception of unknown type\n",
+                 static_cast<int>(harness.size()), harness.data());
+    std::abort();
+  }
+}
+
+}  // namespace obscura::fuzz

@@ -1,0 +1,59 @@
+#pragma once
+// One fuzz harness per parser (docs/reliability.md). A harness hands the
+// fuzzer's bytes to a parser the way the tool does (as a file) and accepts two
+// outcomes only: the input is read, or the parser throws obscura::Error, the
+// clear message the tool prints with exit code 1. Anything else is a finding:
+// another exception (the tool's "internal error", exit 2), a crash, a
+// sanitizer report or a leak.
+//
+// The same harness files build two ways: with clang's libFuzzer, one fuzzer
+// per harness (the `fuzz` preset, `make fuzz`); and with any compiler, one
+// replay tool that runs the checked-in corpora and regression inputs through
+// every harness in the ordinary test suite (fuzz/CMakeLists.txt).
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <string_view>
+#include <vector>
+
+namespace obscura::fuzz {
+
+using HarnessFunction = void (*)(std::string_view bytes);
+
+struct Harness {
+  const char* name;
+  HarnessFunction run;
+};
+
+// What a harness's parser may allocate (core/memory_limit.h): an input that
+// claims more is refused by the checks under test, well inside libFuzzer's
+// 2 GB RSS limit.
+inline constexpr std::uint64_t kFuzzMemoryLimitBytes = 256ull << 20;
+
+// Sets the memory limit; called once before the first input.
+void prepare_process();
+
+// Called once per harness at static initialisation (OBSCURA_FUZZ_HARNESS).
+bool register_harness(const char* name, HarnessFunction run);
+// Every harness linked into this program, sorted by name.
+const std::vector<Harness>& harnesses();
+const Harness* find_harness(std::string_view name);
+
+// Writes `bytes` to the file `name` in this process's scratch folder (under
+// /dev/shm where it exists, so that millions of executions do not wear a
+// disk) and returns its path. The folder is removed when the process exits.
+std::filesystem::path scratch_file(std::string_view name, std::string_view bytes);
+
+// Runs `read`. Returns when it returns or throws obscura::Error; reports any
+// other exception with the harness's name and aborts, which libFuzzer records
+// as a crash and the replay tool as a failed test.
+void expect_clean(std::string_view harness, const std::function<void()>& read);
+
+}  // namespace obscura::fuzz
+
+// Defines and registers a harness: OBSCURA_FUZZ_HARNESS(obj_mesh) { ... bytes ... }
+#define OBSCURA_FUZZ_HARNESS(name)                                    \
+  static void obscura_fuzz_##name(std::string_view bytes);            \
+  [[maybe_unused]] static const bool obscura_fuzz_registered_##name = \
+      ::obscura::fuzz::register_harness(#name, obscura_fuzz_##name);  \
+  static void obscura_fuzz_##name(std::string_view bytes)
