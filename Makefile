@@ -1,14 +1,15 @@
 # The two commands of the README:
 #   make demo   installs dependencies, builds, renders the screening scenario into out/demo/
 #   make test   installs dependencies, builds, runs the whole test suite
-# Other targets: build, bench, asan (sanitizer build + tests), clean, demo-quick
+# Other targets: build, bench, asan (sanitizer build + tests), fuzz (libFuzzer
+# harnesses, FUZZ_SECONDS each, default 60; FUZZ_RUNS caps executions), clean, demo-quick
 # (the demo at low resolution, as CI runs it), puff-example, animated-example,
 # smoke-screen-example.
 PRESET ?= release
 BUILD  := build/$(PRESET)
 JOBS   ?= $(shell nproc)
 
-.PHONY: all deps configure build test demo bench asan clean animated-example smoke-screen-example puff-example demo-quick
+.PHONY: all deps configure build test demo bench asan fuzz clean animated-example smoke-screen-example puff-example demo-quick
 
 all: build
 
@@ -35,6 +36,14 @@ bench: build
 
 asan:
 	@$(MAKE) test PRESET=asan
+
+FUZZ_SECONDS ?= 60
+FUZZ_RUNS ?= 0
+fuzz:
+	@scripts/install-deps --fuzz
+	@cmake --preset fuzz >/dev/null
+	@cmake --build --preset fuzz -j $(JOBS)
+	@scripts/fuzz $(FUZZ_SECONDS) $(FUZZ_RUNS)
 
 clean:
 	@rm -rf build out

@@ -9,6 +9,8 @@
 #include <cstring>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
 
 #include "obscura/core/error.h"
 #include "obscura/io/cloud_manifest.h"
@@ -240,6 +242,32 @@ TEST_F(PrepareTest, BadInputNamesItsFieldAndLeavesNothingBehind) {
   std::filesystem::create_directories(dir_ / "full");
   std::ofstream(dir_ / "full" / "x") << "x";
   EXPECT_THROW(prepare_cloud(kExample, dir_ / "full"), InputError);
+}
+
+// The whole configuration is checked before the model runs: a misspelt key or
+// a huge lifecycle index is reported before the first progress line, not
+// after the dispersion run.
+TEST_F(PrepareTest, TheWholeConfigurationIsCheckedBeforeAnythingIsComputed) {
+  std::vector<std::string> progress;
+  PrepareOptions options;
+  options.progress = [&](const std::string& line) { progress.push_back(line); };
+  nlohmann::json doc = example();
+  doc["colour"] = "grey";
+  EXPECT_THROW(prepare_cloud(write(doc), dir_ / "out", options), InputError);
+  EXPECT_TRUE(progress.empty()) << progress.front();
+  doc = example();
+  doc["lifecycle"] = {{"init_end", 0},
+                      {"loop_start", 4294967297LL},  // 2^32 + 1: wraps to 1 in an int
+                      {"loop_end", 1},
+                      {"loop_wrap", 1},
+                      {"extinction_start", 2}};
+  try {
+    prepare_cloud(write(doc), dir_ / "out", options);
+    ADD_FAILURE() << "a lifecycle index beyond an int was accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.field(), "/lifecycle/loop_start") << e.what();
+  }
+  EXPECT_TRUE(progress.empty()) << progress.front();
 }
 
 TEST_F(PrepareTest, CommandLine) {
