@@ -25,12 +25,14 @@ void remove_scratch();
 
 const std::filesystem::path& scratch_dir() {
   static const std::filesystem::path dir = [] {
-    const std::filesystem::path shm = "/dev/shm";
-    const std::filesystem::path base =
-        std::filesystem::is_directory(shm) ? shm : std::filesystem::temp_directory_path();
-    std::filesystem::path d = base / ("obscura-fuzz-" + std::to_string(::getpid()));
-    std::filesystem::create_directories(d);
-    std::atexit(remove_scratch);
+    // /dev/shm where it exists and is writable, else the temporary folder.
+    const std::string name = "obscura-fuzz-" + std::to_string(::getpid());
+    std::error_code ec;
+    std::filesystem::path d = std::filesystem::path("/dev/shm") / name;
+    if (!std::filesystem::create_directories(d, ec) || ec) {
+      d = std::filesystem::temp_directory_path() / name;
+      std::filesystem::create_directories(d);
+    }
     return d;
   }();
   return dir;
@@ -63,6 +65,10 @@ const Harness* find_harness(std::string_view name) {
 
 std::filesystem::path scratch_file(std::string_view name, std::string_view bytes) {
   const std::filesystem::path path = scratch_dir() / std::string(name);
+  // Registered after the folder's path is constructed, so that it runs before
+  // the path is destroyed at exit. (libFuzzer ends some runs with _Exit, which
+  // skips it: `make fuzz` may leave a folder under /dev/shm.)
+  [[maybe_unused]] static const bool removed_at_exit = std::atexit(remove_scratch) == 0;
   std::ofstream out(path, std::ios::binary | std::ios::trunc);
   out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
   out.close();
