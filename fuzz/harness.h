@@ -4,7 +4,7 @@
 // outcomes only: the input is read, or the parser throws obscura::Error, the
 // clear message the tool prints with exit code 1. Anything else is a finding:
 // another exception (the tool's "internal error", exit 2), a crash, a
-// sanitizer report or a leak.
+// sanitizer report or a leak. run_harness judges the outcome.
 //
 // The same harness files build two ways: with clang's libFuzzer, one fuzzer
 // per harness (the `fuzz` preset, `make fuzz`); and with any compiler, one
@@ -44,10 +44,17 @@ const Harness* find_harness(std::string_view name);
 // disk) and returns its path. The folder is removed when the process exits.
 std::filesystem::path scratch_file(std::string_view name, std::string_view bytes);
 
-// Runs `read`. Returns when it returns or throws obscura::Error; reports any
-// other exception with the harness's name and aborts, which libFuzzer records
-// as a crash and the replay tool as a failed test.
-void expect_clean(std::string_view harness, const std::function<void()>& read);
+// Runs one input through `harness` and judges the outcome: returns when the
+// parser read it or threw obscura::Error; reports anything else (another
+// exception, an InternalError) with the harness's name and aborts, which
+// libFuzzer records as a crash and the replay tool as a failed test. Both
+// drivers call this; a harness itself just calls its parser.
+void run_harness(const Harness& harness, std::string_view bytes);
+
+// For a harness that reads one input twice (with other options): runs `read`
+// and swallows obscura::Error only, so that the second read still runs and
+// anything else still reaches run_harness.
+void ignore_input_errors(const std::function<void()>& read);
 
 }  // namespace obscura::fuzz
 

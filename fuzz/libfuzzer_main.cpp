@@ -21,6 +21,6 @@ extern "C" int LLVMFuzzerInitialize(int*, char***) {
 }
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  harness->run({reinterpret_cast<const char*>(data), size});
+  obscura::fuzz::run_harness(*harness, {reinterpret_cast<const char*>(data), size});
   return 0;
 }

@@ -63,7 +63,7 @@ int main(int argc, char** argv) {
   obscura::fuzz::prepare_process();
   for (const fs::path& p : inputs) {
     std::fprintf(stderr, "%s: %s\n", harness->name, p.c_str());
-    harness->run(read_bytes(p));
+    obscura::fuzz::run_harness(*harness, read_bytes(p));
   }
   std::printf("%s: %zu inputs read without a finding\n", harness->name, inputs.size());
   return 0;
