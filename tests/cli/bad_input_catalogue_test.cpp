@@ -209,7 +209,7 @@ std::vector<BadInput> catalogue() {
       {"--max-memory", "'lots' is not a memory size"});
   add("GridLargerThanMaxMemory",
       [](C& c) { return c.render_json(C::scene(c.puff()), " --max-memory 64kB"); }, 1,
-      {"puff.vdb", "dims", "grid 16x16x16 with 7 channels needs", "--max-memory"});
+      {"puff.vdb", "grid sigma_a_000", "its OpenVDB tree needs", "--max-memory"});
   add("PhotonsLargerThanMaxMemory",
       [](C& c) {
         nlohmann::json s = C::scene();

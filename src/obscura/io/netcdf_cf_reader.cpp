@@ -17,6 +17,7 @@
 #include "obscura/io/netcdf_cf_axes.h"
 #include "obscura/io/netcdf_cf_data_variable.h"
 #include "obscura/io/netcdf_cf_units.h"
+#include "obscura/io/netcdf_classic_check.h"
 #include "obscura/io/netcdf_file.h"
 #include "obscura/medium/voxel_grid.h"
 
@@ -124,6 +125,9 @@ double temperature_offset(const NcReader& r, const DataVar& temp, const NetcdfRe
 
 ConcentrationSeries read_locked(const std::filesystem::path& path, const NetcdfReadOptions& opt) {
   const std::string file = path.string();
+  // Counts and lengths against the file's size first: nc_open allocates what
+  // a classic header says (netcdf_classic_check.h).
+  netcdf_cf::check_netcdf_classic_header(path);
   NcHandle handle;
   const int status = nc_open(path.c_str(), NC_NOWRITE, &handle.id);
   if (status != NC_NOERR) {

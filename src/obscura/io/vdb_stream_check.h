@@ -1,10 +1,12 @@
 #pragma once
-// A walk over an OpenVDB file's header, file metadata and grid descriptors
-// that checks every length and offset against the file's size before
-// OpenVDB reads it. OpenVDB reads a length past the end of a truncated file
-// into an uninitialised integer and allocates whatever it holds (a keyframe
-// cut at 100 bytes took 5-13 GB before failing); a grid whose data ends past
-// the end of the file (cut by one byte) is refused here too.
+// A walk over a whole OpenVDB file (header, file metadata, grid descriptors
+// and every float grid's tree, vdb_grid_check.h) that checks every length,
+// offset and compressed chunk before OpenVDB reads it. OpenVDB allocates
+// what the file says: a length read past the end of a truncated file (a
+// keyframe cut at 100 bytes took 5-13 GB before failing), a compressed
+// chunk's size (a mutated one asked for 128 TB), a metadata array's count.
+// A grid whose data ends past the end of the file (cut by one byte) is
+// refused here too.
 #include <filesystem>
 
 namespace obscura::vdb_format {

@@ -1,0 +1,91 @@
+#include "obscura/io/vdb_metadata_check.h"
+
+#include <fmt/format.h>
+#include <openvdb/Metadata.h>
+#include <openvdb/io/DelayedLoadMetadata.h>
+
+#include <cstdint>
+#include <limits>
+
+#include "obscura/io/vdb_chunk_check.h"
+
+namespace obscura::vdb_format {
+namespace {
+
+// Metadata names are short; anything longer is garbage, not a name.
+std::string short_string(VdbStreamReader& r, const std::string& part) {
+  std::string s = r.string(part);
+  if (s.size() > 4096) throw r.error(part, "a name longer than 4096 bytes: the file is corrupt");
+  return s;
+}
+
+// One array of DelayedLoadMetadata: a uint32 byte count, then a blosc chunk
+// of that many bytes, or (count 0) `elements` raw values. Returns the bytes
+// taken after the byte count.
+std::uint64_t check_delayed_load_array(VdbStreamReader& r, std::uint32_t chunk_bytes,
+                                       std::uint64_t array_bytes, const std::string& part) {
+  if (chunk_bytes == 0) {
+    r.skip(array_bytes, part);
+    return array_bytes;
+  }
+  const std::vector<unsigned char> chunk = r.bytes(chunk_bytes, part);
+  if (auto problem = blosc_chunk_problem(chunk.data(), chunk.size(), array_bytes, /*padded=*/true))
+    throw r.error(part, *problem + ": the file is corrupt");
+  return chunk_bytes;
+}
+
+// io::DelayedLoadMetadata::readValue: uint32 leaf count; the per-leaf mask
+// bytes; the per-leaf compressed sizes (int64), or uint32 max for none.
+// OpenVDB sizes both arrays by the count before it reads them, so the count
+// is held to what the file could hold: every leaf takes at least its 64-byte
+// value mask in the grid's data.
+void check_delayed_load(VdbStreamReader& r, std::uint32_t value_bytes, const std::string& part) {
+  if (value_bytes == 0) return;
+  const std::uint64_t start = r.position();
+  const auto leaves = r.read<std::uint32_t>(part);
+  if (leaves > r.size() / 64)
+    throw r.error(part, fmt::format("claims {} leaf nodes, more than a file of {} bytes holds: "
+                                    "the file is corrupt",
+                                    leaves, r.size()));
+  check_delayed_load_array(r, r.read<std::uint32_t>(part), leaves, part);
+  const auto size_bytes = r.read<std::uint32_t>(part);
+  if (size_bytes != std::numeric_limits<std::uint32_t>::max())
+    check_delayed_load_array(r, size_bytes, std::uint64_t{leaves} * 8, part);
+  const std::uint64_t used = r.position() - start;
+  if (used > value_bytes)
+    throw r.error(part, fmt::format("holds {} bytes but says it has {}: the file is corrupt", used,
+                                    value_bytes));
+  r.skip(value_bytes - used, part);  // OpenVDB skips what it does not know
+}
+
+}  // namespace
+
+void check_metadata_block(VdbStreamReader& r, const std::string& part) {
+  const auto count = r.read<std::int32_t>(part);
+  if (count < 0) throw r.error(part, "a negative entry count: the file is corrupt");
+  for (std::int32_t i = 0; i < count; ++i) {
+    const std::string nth = fmt::format("{} entry {}", part, i);
+    const std::string name = short_string(r, nth);
+    const std::string entry = name.empty() ? nth : fmt::format("{} '{}'", part, name);
+    const std::string type = short_string(r, entry);
+    const auto value_bytes = r.read<std::uint32_t>(entry);
+    if (type == openvdb::io::DelayedLoadMetadata::staticTypeName()) {
+      check_delayed_load(r, value_bytes, entry);
+      continue;
+    }
+    // A type OpenVDB knows reads its own size whatever the entry says
+    // (TypedMetadata::readValue); strings and unknown types read the
+    // entry's size.
+    if (type != openvdb::StringMetadata::staticTypeName() &&
+        openvdb::Metadata::isRegisteredType(type)) {
+      const openvdb::Index32 expected = openvdb::Metadata::createMetadata(type)->size();
+      if (value_bytes != expected)
+        throw r.error(entry, fmt::format("a {} value of {} bytes where OpenVDB reads {}: the "
+                                         "file is corrupt",
+                                         type, value_bytes, expected));
+    }
+    r.skip(value_bytes, entry);
+  }
+}
+
+}  // namespace obscura::vdb_format
