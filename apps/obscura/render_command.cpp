@@ -163,6 +163,10 @@ Command add_render_command(CLI::App& app, const Invocation& invocation) {
             else
               options.progress = [&](const RenderProgress& p) { progress.update(p); };
             options.on_masks = warn_about_blind_sensors;
+            options.on_warning = [&](const std::string& w) {
+              progress.finish();  // the warning on a line of its own
+              std::cerr << "obscura: warning: " << w << "\n";
+            };
             options.on_frame = [&](const RenderedFrame& frame) { writer->write_frame(frame); };
             options.completed = completed;
             options.load_completed = [&](std::size_t f) {

@@ -10,6 +10,7 @@
 #include <functional>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "obscura/io/vdb_keyframe.h"
@@ -324,6 +325,22 @@ std::vector<BadInput> catalogue() {
                " -o " + c.path("out");
       },
       1, {"prep.json", "nested more than 256"});
+  // A netCDF signature and garbage after it: the classic header walk
+  // (io/netcdf_classic_check.h) names the part, HDF5 the format.
+  for (const auto& [name, magic, parts] :
+       {std::tuple{"PrepareNetcdfClassicGarbage", std::string("CDF\x01", 4),
+                   std::vector<std::string>{"c.nc", "dimensions", "the netCDF file is corrupt"}},
+        std::tuple{"PrepareNetcdf4Garbage", std::string("\x89HDF\r\n\x1a\n", 8),
+                   std::vector<std::string>{"c.nc", "netCDF-4 (HDF5)", "truncated or corrupt"}}})
+    add(
+        name,
+        [magic = magic](C& c) {
+          c.write("c.nc", magic + std::string(200, '\xab'));
+          const std::string config = R"({"source": "netcdf", "netcdf": {"file": "c.nc",
+              "concentration": "soot"}, "material": "fog_oil", "wavelengths_um": [0.55]})";
+          return "prepare " + c.write("prep.json", config) + " -o " + c.path("out") + " --quiet";
+        },
+        1, parts);
   add("PrepareMaxMemoryNotASize",
       [](C& c) {
         return "prepare " + c.write("prep.json", "{}") + " -o " + c.path("out") +

@@ -141,6 +141,26 @@ TEST_F(CliTest, RenderWritesImagesAndSummary) {
     EXPECT_EQ(e.path().filename().string().find(".tmp"), std::string::npos) << e.path();
 }
 
+TEST_F(CliTest, ABandOutsideTheCloudsSamplesIsWarnedAboutOnce) {
+  // The puff is sampled at 4 and 10 µm only: a visible band would see its
+  // 4 µm coefficients, which the user must be told. A sequence of three
+  // frames gives the warning once.
+  write_puff("puff.vdb");
+  nlohmann::json doc = scene_with_vdb("puff.vdb");
+  doc["sensors"][0]["bands"] = {"visible", "lwir"};
+  const auto scene = write_scene(doc);
+  const testing::CliResult r = run("render " + scene.string() + " -o " + (dir_ / "out").string() +
+                                   " --time 0:2:1 --threads 1");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const std::string warning =
+      "obscura: warning: sensor ir, band visible (0.4-0.7 µm) lies outside the clouds' spectral "
+      "samples (4-10 µm): their coefficients are held at the 4 µm values across it";
+  const auto at = r.err.find(warning);
+  ASSERT_NE(at, std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find(warning, at + 1), std::string::npos) << "given twice:\n" << r.err;
+  EXPECT_EQ(r.err.find("band lwir"), std::string::npos) << r.err;
+}
+
 TEST_F(CliTest, MissingFieldFails) {
   auto doc = scene_with_vdb("puff.vdb");
   doc["sensors"][0].erase("look_at");

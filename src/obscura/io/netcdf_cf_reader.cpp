@@ -132,6 +132,10 @@ ConcentrationSeries read_locked(const std::filesystem::path& path, const NetcdfR
   const int status = nc_open(path.c_str(), NC_NOWRITE, &handle.id);
   if (status != NC_NOERR) {
     handle.id = -1;
+    if (status == NC_EHDFERR)  // an HDF5 signature, and HDF5 could not read on
+      throw InputError(file, "",
+                       "a netCDF-4 (HDF5) file that HDF5 cannot read: it is truncated or "
+                       "corrupt");
     throw InputError(file, "", fmt::format("not a readable netCDF file: {}", nc_strerror(status)));
   }
   const NcReader r(file, handle.id);

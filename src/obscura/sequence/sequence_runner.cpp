@@ -7,6 +7,8 @@
 #include <cmath>
 #include <map>
 #include <optional>
+#include <set>
+#include <string>
 
 #include "obscura/core/byte_stream.h"
 #include "obscura/core/check.h"
@@ -15,6 +17,7 @@
 #include "obscura/core/time_steps.h"
 #include "obscura/film/sensor_image_rows.h"
 #include "obscura/render/renderer.h"
+#include "obscura/scene/spectral_coverage.h"
 #include "obscura/sequence/frame_message.h"
 
 namespace obscura {
@@ -179,11 +182,18 @@ class SequenceRun {
     }
   }
 
+  void warn_once(const std::vector<std::string>& warnings) {
+    if (!options_.on_warning) return;
+    for (const std::string& w : warnings)
+      if (warned_.insert(w).second) options_.on_warning(w);
+  }
+
   // Stages frame f and renders it, or this process's share of it.
   RenderedFrame stage_and_render(std::size_t f, const ProcessGroup& processes) {
     throw_if_interrupted();
     const auto start = std::chrono::steady_clock::now();
     stage_scene(scene_, times_[f]);
+    warn_once(bands_beyond_cloud_samples(scene_));
     const double staging_s = seconds_since(start);
     RenderedFrame frame = render_frame(scene_, f, times_.size(), options_.progress, processes);
     frame.staging_seconds = staging_s;
@@ -359,6 +369,7 @@ class SequenceRun {
   std::vector<bool> completed_;         // per frame: an earlier run completed it
   std::vector<std::size_t> to_render_;  // the frames to render, in order
   std::size_t next_ = 0;                // rank 0: the next frame to take
+  std::set<std::string> warned_;        // warnings already given
 };
 
 }  // namespace

@@ -108,6 +108,10 @@ struct SequenceOptions {
   // Called once the target masks are known, before the first frame is staged
   // (a caller can warn about sensors that do not see the target).
   std::function<void(const std::vector<TargetMask>&)> on_masks;
+  // Called once for each distinct warning about a staged frame's inputs, on
+  // the process that staged it: a sensor band reaching beyond the clouds'
+  // spectral samples (scene/spectral_coverage.h).
+  std::function<void(const std::string&)> on_warning;
   // Called with each frame when it is complete, in frame order (on rank 0 only).
   std::function<void(const RenderedFrame&)> on_frame;
   // Who shares the work, and how. Every process of the group calls
