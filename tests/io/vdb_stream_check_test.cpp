@@ -4,6 +4,7 @@
 // allocate what the file said are refused before it does.
 #include "obscura/io/vdb_stream_check.h"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <openvdb/io/File.h>
 #include <openvdb/math/Maps.h>
@@ -217,6 +218,21 @@ TEST_F(VdbStreamCheckTest, ATreeLargerThanTheMemoryLimitIsRefusedBeforeOpenVdbBu
   EXPECT_NE(msg.find("grid density: its OpenVDB tree needs"), std::string::npos) << msg;
   reset_memory_limit();
   EXPECT_NO_THROW(vdb_format::check_vdb_stream(p));
+}
+
+TEST_F(VdbStreamCheckTest, FileVersionsOutsideTheLayoutsWalkedAreRefused) {
+  // The file version is the uint32 after the 8-byte magic. OpenVDB only
+  // warns about a newer one and reads on, in a layout it does not know.
+  const testing::Bytes b =
+      testing::read_file_bytes(write({sparse_grid("density")}, openvdb::io::COMPRESS_BLOSC));
+  for (const std::uint32_t version : {221u, openvdb::OPENVDB_FILE_VERSION + 1, 4320u}) {
+    testing::Bytes v = b;
+    store<std::uint32_t>(v, 8, version);
+    testing::write_file_bytes(dir_ / "v.vdb", v);
+    const std::string msg = refusal(dir_ / "v.vdb");
+    EXPECT_NE(msg.find(fmt::format("OpenVDB file version {} is", version)), std::string::npos)
+        << msg;
+  }
 }
 
 TEST_F(VdbStreamCheckTest, EveryTruncationIsRefused) {

@@ -1,6 +1,7 @@
 #include "obscura/io/vdb_stream_check.h"
 
 #include <fmt/format.h>
+#include <openvdb/version.h>
 
 #include <cstdint>
 #include <string>
@@ -24,6 +25,9 @@ constexpr std::int64_t kMagic = 0x56444220;
 // OpenVDB 3.0 (2014) and later write version 222 or above; the older
 // layouts (no per-node value flags) are not walked, so they are refused.
 constexpr std::uint32_t kNodeMaskCompression = 222;
+// What this OpenVDB writes; it only warns about newer files and reads on, in
+// a layout it does not know.
+constexpr std::uint32_t kNewestVersion = openvdb::OPENVDB_FILE_VERSION;
 
 std::string short_string(VdbStreamReader& r, const std::string& part) {
   std::string s = r.string(part);
@@ -47,6 +51,10 @@ void check_vdb_stream(const std::filesystem::path& path) {
     throw r.error("header", fmt::format("OpenVDB file version {} is older than {} (OpenVDB 3.0), "
                                         "the oldest read; save it again with a newer OpenVDB",
                                         version, kNodeMaskCompression));
+  if (version > kNewestVersion)
+    throw r.error("header", fmt::format("OpenVDB file version {} is newer than {}, the newest this "
+                                        "OpenVDB library reads",
+                                        version, kNewestVersion));
   r.skip(2 * sizeof(std::uint32_t), "header");  // library version
   const bool has_offsets = r.read<char>("header") != 0;
   r.skip(36, "header");  // UUID
