@@ -1,7 +1,7 @@
 #pragma once
 // --format on `render`: optional outputs beyond the EXR, PNG, CSV and JSON files
 // every render writes (scene/output_formats.h). Repeated or a comma list
-// (--format netcdf); it adds to the scene's "outputs". An unknown name is a
+// (--format netcdf,envi); it adds to the scene's "outputs". An unknown name is a
 // usage error (exit 64, docs/errors.md), as an unknown option is.
 #include <CLI/CLI.hpp>
 #include <string>
@@ -20,8 +20,9 @@ inline void add_format_option(CLI::App* cmd, std::vector<std::string>& names) {
       "FORMAT");
   cmd->add_option("--format", names,
                   "Also write FORMAT (repeat or comma list): netcdf writes render.nc, every "
-                  "frame, sensor and band in one NetCDF-CF file (docs/formats.md); adds to the "
-                  "scene's \"outputs\"")
+                  "frame, sensor and band in one NetCDF-CF file; envi writes each sensor's band "
+                  "radiance per frame as an ENVI cube, SENSOR[_fNNNN]_radiance.img and .hdr "
+                  "(docs/formats.md); adds to the scene's \"outputs\"")
       ->delimiter(',')
       ->check(known);
 }

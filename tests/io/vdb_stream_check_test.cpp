@@ -235,6 +235,24 @@ TEST_F(VdbStreamCheckTest, FileVersionsOutsideTheLayoutsWalkedAreRefused) {
   }
 }
 
+TEST_F(VdbStreamCheckTest, AUuidOutOfItsFormIsRefused) {
+  // A fuzzing finding: OpenVDB 10 reads the UUID with boost's `is >> uuid`,
+  // which stops at a character out of place, so a vertical tab among its
+  // digits moved everything OpenVDB read next (a 1.6 GB metadata name) away
+  // from where the walk read. The UUID follows the 8-byte magic, the version,
+  // the library version and the offsets flag (21 bytes).
+  const testing::Bytes b =
+      testing::read_file_bytes(write({sparse_grid("density")}, openvdb::io::COMPRESS_BLOSC));
+  for (const std::size_t at : {21u + 0u, 21u + 8u, 21u + 35u}) {
+    testing::Bytes v = b;
+    v[at] = '\v';
+    testing::write_file_bytes(dir_ / "u.vdb", v);
+    EXPECT_NE(refusal(dir_ / "u.vdb").find("header: its UUID is not 36 characters"),
+              std::string::npos)
+        << "at " << at;
+  }
+}
+
 TEST_F(VdbStreamCheckTest, EveryTruncationIsRefused) {
   const Bytes b =
       testing::read_file_bytes(write({sparse_grid("density")}, openvdb::io::COMPRESS_BLOSC));

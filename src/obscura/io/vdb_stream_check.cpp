@@ -3,8 +3,10 @@
 #include <fmt/format.h>
 #include <openvdb/version.h>
 
+#include <cctype>
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "obscura/core/error.h"
 #include "obscura/io/vdb_grid_check.h"
@@ -35,6 +37,22 @@ std::string short_string(VdbStreamReader& r, const std::string& part) {
   return s;
 }
 
+// OpenVDB 10 reads the file's UUID with boost's formatted extraction
+// (`is >> uuid`), which stops at the first character out of place, so a
+// mutated UUID shifts everything OpenVDB reads after it (a metadata name of
+// 1.6 GB) away from where this walk reads. The walk therefore holds the UUID
+// to the form OpenVDB writes: 8-4-4-4-12 hexadecimal digits.
+void check_uuid(VdbStreamReader& r) {
+  const std::vector<unsigned char> uuid = r.bytes(36, "header");
+  for (std::size_t i = 0; i < uuid.size(); ++i) {
+    const bool hyphen = i == 8 || i == 13 || i == 18 || i == 23;
+    if (hyphen ? uuid[i] != '-' : std::isxdigit(uuid[i]) == 0)
+      throw r.error("header",
+                    "its UUID is not 36 characters of hexadecimal digits and hyphens: "
+                    "the OpenVDB file is corrupt");
+  }
+}
+
 }  // namespace
 
 void check_vdb_stream(const std::filesystem::path& path) {
@@ -57,7 +75,7 @@ void check_vdb_stream(const std::filesystem::path& path) {
                                         version, kNewestVersion));
   r.skip(2 * sizeof(std::uint32_t), "header");  // library version
   const bool has_offsets = r.read<char>("header") != 0;
-  r.skip(36, "header");  // UUID
+  check_uuid(r);
 
   check_metadata_block(r, "file metadata");
   if (!has_offsets)

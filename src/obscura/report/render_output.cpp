@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include "obscura/io/envi_cube.h"
 #include "obscura/io/exr_writer.h"
 #include "obscura/report/png_preview.h"
 
@@ -81,6 +82,26 @@ std::vector<std::filesystem::path> write_sensor_image(const std::filesystem::pat
     }
   }
   return written;
+}
+
+std::vector<std::filesystem::path> write_sensor_radiance_cube(const std::filesystem::path& dir,
+                                                              const SensorImage& image,
+                                                              const std::string& suffix,
+                                                              double time_s) {
+  EnviCube cube;
+  cube.width = image.width;
+  cube.height = image.height;
+  cube.data_units = "W m-2 sr-1";
+  cube.description =
+      fmt::format("obscura band radiance, sensor {}, t = {:g} s", image.sensor, time_s);
+  for (const BandImage& b : image.bands)
+    cube.bands.push_back({b.band.name(), 0.5 * (b.band.lo_um() + b.band.hi_um()),
+                          b.band.hi_um() - b.band.lo_um(), b.radiance.data()});
+  const auto img = dir / (file_safe_name(image.sensor) + suffix + "_radiance.img");
+  write_envi_cube(img, cube);
+  auto hdr = img;
+  hdr.replace_extension(".hdr");
+  return {img, hdr};
 }
 
 }  // namespace obscura

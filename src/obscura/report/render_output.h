@@ -24,4 +24,13 @@ std::vector<std::filesystem::path> write_sensor_image(const std::filesystem::pat
                                                       const std::string& suffix = "",
                                                       double time_s = 0.0);
 
+// With the "envi" output: the sensor's band radiance (W m⁻² sr⁻¹) as one ENVI
+// cube, <sensor><suffix>_radiance.img and .hdr (io/envi_cube.h), each band's
+// centre and width being the midpoint and span of its response's limits.
+// Returns the paths written.
+std::vector<std::filesystem::path> write_sensor_radiance_cube(const std::filesystem::path& dir,
+                                                              const SensorImage& image,
+                                                              const std::string& suffix,
+                                                              double time_s);
+
 }  // namespace obscura

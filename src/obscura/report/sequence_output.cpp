@@ -140,8 +140,8 @@ void check_no_folder_takes_an_output_name(const std::filesystem::path& dir) {
   if (ec) return;  // missing: created when the first file is written
   for (const fs::directory_entry& e : it) {
     const std::string ext = e.path().extension().string();
-    if (e.is_directory(ec) &&
-        (ext == ".exr" || ext == ".png" || ext == ".csv" || ext == ".json" || ext == ".nc"))
+    if (e.is_directory(ec) && (ext == ".exr" || ext == ".png" || ext == ".csv" || ext == ".json" ||
+                               ext == ".nc" || ext == ".img" || ext == ".hdr"))
       throw InputError(e.path().string(), "",
                        "is a folder where obscura writes a file: move it or choose another "
                        "output folder");
@@ -187,6 +187,10 @@ void SequenceWriter::write_frame(const RenderedFrame& frame) {
   for (const SensorImage& image : frame.images) {
     const auto files = write_sensor_image(dir_, image, provenance_, suffix, frame.time_s);
     written_.insert(written_.end(), files.begin(), files.end());
+    if (has_output_format(scene_.outputs, OutputFormat::kEnvi)) {
+      const auto cube = write_sensor_radiance_cube(dir_, image, suffix, frame.time_s);
+      written_.insert(written_.end(), cube.begin(), cube.end());
+    }
     exr_files_.push_back(files.front().string());
     for (const BandImage& b : image.bands) {
       ContactSheetRow& r = sheet_.rows[row++];

@@ -14,7 +14,8 @@ struct FormatName {
   OutputFormat format;
   std::string_view name;
 };
-constexpr std::array kFormatNames = {FormatName{OutputFormat::kNetcdf, "netcdf"}};
+constexpr std::array kFormatNames = {FormatName{OutputFormat::kNetcdf, "netcdf"},
+                                     FormatName{OutputFormat::kEnvi, "envi"}};
 
 }  // namespace
 

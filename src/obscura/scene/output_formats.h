@@ -12,6 +12,7 @@ namespace obscura {
 
 enum class OutputFormat {
   kNetcdf,  // render.nc: every frame, sensor and band in one NetCDF-CF file
+  kEnvi,    // <sensor>[_fNNNN]_radiance.img/.hdr: band radiance as an ENVI cube
 };
 
 // The name a scene file and the command line use ("netcdf").
