@@ -84,12 +84,13 @@ TEST_F(RenderNetcdfTest, TheSceneCanAskForItAndTheOptionRepeats) {
 }
 
 TEST_F(RenderNetcdfTest, AnUnknownFormatIsAUsageError) {
-  const auto r = render("--format netcdf,envi");
+  const auto r = render("--format netcdf,tiff");
   EXPECT_EQ(r.status, 64) << r.err;
   EXPECT_NE(r.err.find("obscura: error: "), std::string::npos) << r.err;
-  EXPECT_NE(r.err.find("unknown output format 'envi' (expected: netcdf; EXR, PNG, CSV and JSON "
-                       "files are always written)"),
-            std::string::npos)
+  EXPECT_NE(
+      r.err.find("unknown output format 'tiff' (expected: netcdf, envi; EXR, PNG, CSV and JSON "
+                 "files are always written)"),
+      std::string::npos)
       << r.err;
   EXPECT_FALSE(fs::exists(out_));  // refused before anything was read or written
 }

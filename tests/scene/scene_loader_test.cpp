@@ -342,11 +342,12 @@ TEST(SceneLoader, OutputsNameTheOptionalFormats) {
 
 TEST(SceneLoader, BadOutputsNameTheirPath) {
   auto doc = minimal_scene();
-  doc["outputs"] = {"netcdf", "envi"};
+  doc["outputs"] = {"netcdf", "tiff"};
   std::string m = load_error(doc);
-  EXPECT_NE(m.find("/outputs/1: unknown output format 'envi' (expected: netcdf; EXR, PNG, CSV "
-                   "and JSON files are always written)"),
-            std::string::npos)
+  EXPECT_NE(
+      m.find("/outputs/1: unknown output format 'tiff' (expected: netcdf, envi; EXR, PNG, CSV "
+             "and JSON files are always written)"),
+      std::string::npos)
       << m;
   doc["outputs"] = {1};
   m = load_error(doc);
