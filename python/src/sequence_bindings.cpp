@@ -49,6 +49,7 @@ struct SequenceRun {
   SequenceResult result;
   std::string method;
   std::uint64_t seed = 0;
+  std::vector<std::string> warnings;  // given as Python RuntimeWarnings, GIL held
 };
 
 void check_times(const std::vector<double>& times) {
@@ -76,6 +77,7 @@ SequenceRun run_sequence(SceneHandle& h, const std::vector<double>& times,
   options.on_frame = [&](const RenderedFrame& frame) {
     for (std::size_t s = 0; s < frame.images.size(); ++s) run.sensors[s].append(frame.images[s]);
   };
+  options.on_warning = [&](const std::string& w) { run.warnings.push_back(w); };
   run.result = render_sequence(scene, times, options);
   return run;
 }
@@ -200,6 +202,10 @@ void bind_sequence(py::module_& m) {
         auto run = std::make_shared<const SequenceRun>(call.run([&] {
           return run_sequence(*h, times, SettingsOverride{method, threads, seed}, call);
         }));
+        // What the CLI prints as "obscura: warning: …" (scene/spectral_coverage.h).
+        const py::object warn = py::module_::import("warnings").attr("warn");
+        for (const std::string& w : run->warnings)
+          warn(w, py::reinterpret_borrow<py::object>(PyExc_RuntimeWarning), 2);
         py::dict out;
         out["times_s"] = py::array_t<double>(static_cast<py::ssize_t>(times.size()), times.data());
         out["method"] = run->method;

@@ -66,6 +66,18 @@ def test_times_must_increase():
         obscura.render_sequence(scene, [])
 
 
+def test_a_band_outside_the_clouds_samples_is_a_runtime_warning_given_once(scene_dict):
+    # The cloud is sampled at 4 and 10 µm only, as the CLI warns on stderr.
+    scene_dict["sensors"][0]["bands"] = ["visible", "lwir"]
+    scene = obscura.Scene.from_dict(scene_dict)
+    with pytest.warns(RuntimeWarning) as caught:
+        obscura.render_sequence(scene, [0.0, 1.0, 2.0])
+    messages = [str(w.message) for w in caught]
+    assert messages == ["sensor ir, band visible (0.4-0.7 µm) lies outside the clouds' spectral "
+                        "samples (4-10 µm): their coefficients are held at the 4 µm values "
+                        "across it; prepare the clouds at wavelengths in the band"]
+
+
 FALLBACK = textwrap.dedent("""
     import json, sys
     sys.modules["xarray"] = None  # import xarray now raises ImportError
