@@ -60,7 +60,8 @@ std::string envi_header_text(const EnviCube& cube) {
       cube.data_units);
 }
 
-void write_envi_cube(const std::filesystem::path& img_path, const EnviCube& cube) {
+std::vector<std::filesystem::path> write_envi_cube(const std::filesystem::path& img_path,
+                                                   const EnviCube& cube) {
   if (cube.bands.empty() || cube.width <= 0 || cube.height <= 0)
     throw InputError(img_path.string(), "", "an ENVI cube needs at least one band and one pixel");
   static_assert(std::endian::native == std::endian::little,
@@ -75,6 +76,7 @@ void write_envi_cube(const std::filesystem::path& img_path, const EnviCube& cube
   hdr_path.replace_extension(".hdr");
   write_text_file_atomic(img_path, bytes);
   write_text_file_atomic(hdr_path, envi_header_text(cube));
+  return {img_path, hdr_path};
 }
 
 }  // namespace obscura

@@ -25,9 +25,11 @@ struct EnviCube {
 };
 
 // Writes `img_path` and the header beside it (the same name with the
-// extension .hdr), each under a temporary name and renamed when whole.
-// Throws InputError on a cube without bands or pixels, Error on I/O failure.
-void write_envi_cube(const std::filesystem::path& img_path, const EnviCube& cube);
+// extension .hdr), each under a temporary name and renamed when whole, and
+// returns the two paths. Throws InputError on a cube without bands or
+// pixels, Error on I/O failure.
+std::vector<std::filesystem::path> write_envi_cube(const std::filesystem::path& img_path,
+                                                   const EnviCube& cube);
 
 // The header's text, for tests and docs.
 std::string envi_header_text(const EnviCube& cube);

@@ -139,8 +139,8 @@ void attributes(HeaderReader& r, const Layout& l, const std::string& owner) {
 
 struct Variable {
   std::string name;
-  std::vector<std::uint64_t> dims;
-  std::uint64_t value_bytes = 0;
+  bool is_record = false;   // its first dimension is the unlimited one
+  std::uint64_t bytes = 0;  // per record for a record variable, else in all
   std::uint64_t begin = 0;
 };
 
@@ -187,61 +187,53 @@ void check_netcdf_classic_header(const std::filesystem::path& path) {
 
   const std::uint64_t var_count = list_count(r, l, kVariableTag, 24, "variables");
   std::vector<Variable> vars(var_count);
+  // The records' stride: the sum of every record variable's bytes per
+  // record, each padded to 4 bytes unless there is only one.
+  std::uint64_t padded_sum = 0, record_vars = 0, one_record_bytes = 0;
   for (Variable& v : vars) {
     v.name = r.name(l.count_bytes, "variables");
     const std::string part = "variable " + v.name;
     const std::uint64_t rank = r.uint(l.count_bytes, part);
     if (rank > r.remaining() / static_cast<std::uint64_t>(l.count_bytes))
       throw r.error(part, fmt::format("claims {} dimensions: the netCDF file is corrupt", rank));
+    std::vector<std::uint64_t> lengths;
     for (std::uint64_t k = 0; k < rank; ++k) {
       const std::uint64_t id = r.uint(l.count_bytes, part);
       if (id >= dim_count)
         throw r.error(part,
                       fmt::format("dimension id {} but the file has {} dimensions", id, dim_count));
-      if (k > 0 && record_dim && id == *record_dim)
-        throw r.error(part, "the unlimited dimension is not its first");
-      v.dims.push_back(id);
+      if (record_dim && id == *record_dim) {
+        if (k > 0) throw r.error(part, "the unlimited dimension is not its first");
+        v.is_record = true;
+      } else {
+        lengths.push_back(dim_len[id]);
+      }
     }
     attributes(r, l, v.name);
     const auto type = type_size(static_cast<std::uint32_t>(r.uint(4, part)), l.cdf5);
     if (!type) throw r.error(part, "an unknown value type: the netCDF file is corrupt");
-    v.value_bytes = *type;
-    r.uint(l.cdf5 ? 8 : 4, part);  // vsize: recomputed below, as netCDF-C does
-    v.begin = r.uint(l.offset_bytes, part);
-  }
-
-  // Every variable's data within the file: its bytes per record (or in all,
-  // for a fixed-size variable) from the dimension lengths, and for record
-  // variables the records' stride, the sum of every record variable's bytes
-  // per record, each padded to 4 bytes unless there is only one.
-  std::vector<std::uint64_t> bytes(vars.size());
-  std::uint64_t record_stride = 0, record_vars = 0;
-  for (std::size_t i = 0; i < vars.size(); ++i) {
-    const Variable& v = vars[i];
-    const bool is_record = !v.dims.empty() && record_dim && v.dims[0] == *record_dim;
-    std::uint64_t n = v.value_bytes;
-    for (std::size_t k = is_record ? 1 : 0; k < v.dims.size(); ++k) {
-      const auto p = checked_product({n, dim_len[v.dims[k]]});
-      if (!p) throw r.error("variable " + v.name, "its size overflows 64 bits");
-      n = *p;
+    v.bytes = *type;
+    for (const std::uint64_t n : lengths) {
+      const auto p = checked_product({v.bytes, n});
+      if (!p) throw r.error(part, "its size overflows 64 bits");
+      v.bytes = *p;
     }
-    bytes[i] = n;
-    if (is_record) {
-      record_stride += pad4(n);
+    r.uint(l.cdf5 ? 8 : 4, part);  // vsize: recomputed above, as netCDF-C does
+    v.begin = r.uint(l.offset_bytes, part);
+    if (v.is_record) {
+      padded_sum += pad4(v.bytes);
+      one_record_bytes = v.bytes;
       ++record_vars;
     }
   }
-  if (record_vars == 1)  // the one-record-variable exception: no padding
-    for (std::size_t i = 0; i < vars.size(); ++i)
-      if (!vars[i].dims.empty() && record_dim && vars[i].dims[0] == *record_dim)
-        record_stride = bytes[i];
-  for (std::size_t i = 0; i < vars.size(); ++i) {
-    const Variable& v = vars[i];
-    const bool is_record = !v.dims.empty() && record_dim && v.dims[0] == *record_dim;
+  const std::uint64_t record_stride = record_vars == 1 ? one_record_bytes : padded_sum;
+
+  // Every variable's data within the file.
+  for (const Variable& v : vars) {
     // Overflow-checked: a corrupt header's offsets and sizes may pass 64 bits.
     std::uint64_t end = 0, span = 0;
-    bool overflow = __builtin_add_overflow(v.begin, bytes[i], &end);
-    if (is_record) {
+    bool overflow = __builtin_add_overflow(v.begin, v.bytes, &end);
+    if (v.is_record) {
       if (records == 0 || records == streaming) continue;  // no record to read
       overflow = __builtin_mul_overflow(records - 1, record_stride, &span) ||
                  __builtin_add_overflow(end, span, &end) || overflow;

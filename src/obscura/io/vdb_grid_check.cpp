@@ -7,7 +7,6 @@
 #include <bit>
 #include <limits>
 #include <set>
-#include <tuple>
 #include <vector>
 
 #include "obscura/core/memory_limit.h"

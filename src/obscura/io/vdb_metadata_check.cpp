@@ -12,13 +12,6 @@
 namespace obscura::vdb_format {
 namespace {
 
-// Metadata names are short; anything longer is garbage, not a name.
-std::string short_string(VdbStreamReader& r, const std::string& part) {
-  std::string s = r.string(part);
-  if (s.size() > 4096) throw r.error(part, "a name longer than 4096 bytes: the file is corrupt");
-  return s;
-}
-
 // One array of DelayedLoadMetadata: a uint32 byte count, then a blosc chunk
 // of that many bytes, or (count 0) `elements` raw values. Returns the bytes
 // taken after the byte count.
@@ -65,9 +58,9 @@ void check_metadata_block(VdbStreamReader& r, const std::string& part) {
   if (count < 0) throw r.error(part, "a negative entry count: the file is corrupt");
   for (std::int32_t i = 0; i < count; ++i) {
     const std::string nth = fmt::format("{} entry {}", part, i);
-    const std::string name = short_string(r, nth);
+    const std::string name = r.name(nth);
     const std::string entry = name.empty() ? nth : fmt::format("{} '{}'", part, name);
-    const std::string type = short_string(r, entry);
+    const std::string type = r.name(entry);
     const auto value_bytes = r.read<std::uint32_t>(entry);
     if (type == openvdb::io::DelayedLoadMetadata::staticTypeName()) {
       check_delayed_load(r, value_bytes, entry);

@@ -31,12 +31,6 @@ constexpr std::uint32_t kNodeMaskCompression = 222;
 // a layout it does not know.
 constexpr std::uint32_t kNewestVersion = openvdb::OPENVDB_FILE_VERSION;
 
-std::string short_string(VdbStreamReader& r, const std::string& part) {
-  std::string s = r.string(part);
-  if (s.size() > 4096) throw r.error(part, "a name longer than 4096 bytes: the file is corrupt");
-  return s;
-}
-
 // OpenVDB 10 reads the file's UUID with boost's formatted extraction
 // (`is >> uuid`), which stops at the first character out of place, so a
 // mutated UUID shifts everything OpenVDB reads after it (a metadata name of
@@ -89,10 +83,10 @@ void check_vdb_stream(const std::filesystem::path& path) {
   for (std::int32_t i = 0; i < grid_count; ++i) {
     const std::string nth = fmt::format("grid descriptor {}", i);
     GridExtent g;
-    const std::string name = short_string(r, nth);
+    const std::string name = r.name(nth);
     g.part = name.empty() ? nth : "grid " + name;
-    g.type = short_string(r, g.part);
-    g.instance = !short_string(r, g.part).empty();  // the instance parent
+    g.type = r.name(g.part);
+    g.instance = !r.name(g.part).empty();  // the instance parent
     const auto grid_pos = r.read<std::int64_t>(g.part);
     const auto block_pos = r.read<std::int64_t>(g.part);
     const auto end_pos = r.read<std::int64_t>(g.part);

@@ -32,6 +32,12 @@ std::string VdbStreamReader::string(const std::string& part) {
   return s;
 }
 
+std::string VdbStreamReader::name(const std::string& part) {
+  std::string s = string(part);
+  if (s.size() > 4096) throw error(part, "a name longer than 4096 bytes: the file is corrupt");
+  return s;
+}
+
 std::vector<unsigned char> VdbStreamReader::bytes(std::uint64_t n, const std::string& part) {
   need(n, part);
   std::vector<unsigned char> v(n);

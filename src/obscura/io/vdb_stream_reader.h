@@ -33,6 +33,9 @@ class VdbStreamReader {
   }
   // A uint32 length and that many bytes, as OpenVDB writes names.
   std::string string(const std::string& part);
+  // The same for a name (a grid's, a type's, a metadata entry's): names are
+  // short, and one longer than 4096 bytes is garbage, refused.
+  std::string name(const std::string& part);
   std::vector<unsigned char> bytes(std::uint64_t n, const std::string& part);
   void skip(std::uint64_t n, const std::string& part) { seek(pos_ + n, part); }
   // Only forward, and not past the end of the file.

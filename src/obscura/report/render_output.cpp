@@ -98,10 +98,7 @@ std::vector<std::filesystem::path> write_sensor_radiance_cube(const std::filesys
     cube.bands.push_back({b.band.name(), 0.5 * (b.band.lo_um() + b.band.hi_um()),
                           b.band.hi_um() - b.band.lo_um(), b.radiance.data()});
   const auto img = dir / (file_safe_name(image.sensor) + suffix + "_radiance.img");
-  write_envi_cube(img, cube);
-  auto hdr = img;
-  hdr.replace_extension(".hdr");
-  return {img, hdr};
+  return write_envi_cube(img, cube);
 }
 
 }  // namespace obscura
