@@ -21,6 +21,7 @@
 #include "obscura/core/error.h"
 #include "obscura/core/memory_limit.h"
 #include "support/file_bytes.h"
+#include "support/input_error.h"
 #include "support/temp_dir_test.h"
 
 namespace obscura {
@@ -90,13 +91,9 @@ class VdbStreamCheckTest : public testing::TempDirTest {
       EXPECT_NO_THROW(f.readGrid(it.gridName())) << it.gridName();
   }
 
+  // The message of the InputError the check must throw.
   static std::string refusal(const fs::path& p) {
-    try {
-      vdb_format::check_vdb_stream(p);
-    } catch (const InputError& e) {
-      return e.what();
-    }
-    return "";
+    return testing::expect_input_error([&] { vdb_format::check_vdb_stream(p); }).what();
   }
 
   int counter_ = 0;
