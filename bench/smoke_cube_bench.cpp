@@ -13,10 +13,18 @@
 // is below --target, printing time and error at each step. Usage:
 //   bench_smoke_cube [--reference-spp 4096] [--target 0.02] [--threads N]
 //                    [--size 256] [--methods path-tracer,photonmap,radiance-cache]
-// Nothing here is asserted.
+//                    [--reference-file F] [--sh-degree D] [--kernel R] [--voxel M]
+//                    [--photons N] [--steps 12] [--error-map F] [--cache-spp 1]
+// --reference-file keeps the reference's block means in F (read back when F
+// exists and was made at the same size and spp); --sh-degree, --kernel and
+// --voxel set the radiance cache's settings, --photons its first effort
+// (photons per node, doubled at each of at most --steps steps). --error-map
+// writes each step's blocks (reference mean and relative difference) to F as
+// CSV. --cache-spp: the radiance cache's samples per pixel (stratified). Nothing here is asserted.
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <fstream>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -87,6 +95,28 @@ double block_error(const Blocks& ref, const Blocks& b,
   return std::sqrt(sum / n);
 }
 
+// The reference's block means, kept between runs (plain text: size, spp,
+// block count, then the means and their standard errors).
+bool read_reference(const std::string& path, int size, int spp, Blocks& out) {
+  std::ifstream in(path);
+  int file_size = 0, file_spp = 0;
+  std::size_t count = 0;
+  if (!(in >> file_size >> file_spp >> count) || file_size != size || file_spp != spp) return false;
+  out.mean.resize(count);
+  out.stderr_mean.resize(count);
+  for (std::size_t k = 0; k < count; ++k)
+    if (!(in >> out.mean[k] >> out.stderr_mean[k])) return false;
+  return true;
+}
+
+void write_reference(const std::string& path, int size, int spp, const Blocks& b) {
+  std::ofstream out(path);
+  out.precision(17);
+  out << size << ' ' << spp << ' ' << b.mean.size() << '\n';
+  for (std::size_t k = 0; k < b.mean.size(); ++k)
+    out << b.mean[k] << ' ' << b.stderr_mean[k] << '\n';
+}
+
 struct Timed {
   double seconds;
   Blocks blocks;
@@ -101,9 +131,11 @@ Timed render_timed(Scene& scene) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  int reference_spp = 4096, threads = 0, size = 256;
-  double target = 0.02;
-  std::string methods = "path-tracer,photonmap,radiance-cache";
+  int reference_spp = 4096, threads = 0, size = 256, sh_degree = -1, kernel = -1;
+  double target = 0.02, voxel_m = -1;
+  long long cache_photons = 25000;
+  int max_steps = 12, cache_spp = 1;
+  std::string methods = "path-tracer,photonmap,radiance-cache", reference_file, error_map;
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string a = argv[i];
     if (a == "--reference-spp")
@@ -116,6 +148,22 @@ int main(int argc, char** argv) {
       size = std::atoi(argv[i + 1]);
     else if (a == "--methods")
       methods = argv[i + 1];
+    else if (a == "--reference-file")
+      reference_file = argv[i + 1];
+    else if (a == "--sh-degree")
+      sh_degree = std::atoi(argv[i + 1]);
+    else if (a == "--kernel")
+      kernel = std::atoi(argv[i + 1]);
+    else if (a == "--voxel")
+      voxel_m = std::atof(argv[i + 1]);
+    else if (a == "--error-map")
+      error_map = argv[i + 1];
+    else if (a == "--cache-spp")
+      cache_spp = std::atoi(argv[i + 1]);
+    else if (a == "--steps")
+      max_steps = std::atoi(argv[i + 1]);
+    else if (a == "--photons")
+      cache_photons = std::atoll(argv[i + 1]);
     else {
       std::fprintf(stderr, "unknown option %s\n", a.c_str());
       return 2;
@@ -129,7 +177,14 @@ int main(int argc, char** argv) {
   scene.settings.method = RenderMethod::kPathTracer;
   scene.settings.samples_per_pixel = reference_spp;
   scene.settings.seed = 12345;
-  const Timed ref = render_timed(scene);
+  if (sh_degree >= 0) scene.settings.radiance_cache.sh_degree = sh_degree;
+  if (kernel >= 0) scene.settings.radiance_cache.kernel_radius_nodes = kernel;
+  if (voxel_m >= 0) scene.settings.radiance_cache.voxel_m = voxel_m;
+  Timed ref{0.0, {}};
+  if (reference_file.empty() || !read_reference(reference_file, size, reference_spp, ref.blocks)) {
+    ref = render_timed(scene);
+    if (!reference_file.empty()) write_reference(reference_file, size, reference_spp, ref.blocks);
+  }
   const double ref_error = block_error(ref.blocks, ref.blocks, &ref.blocks.stderr_mean);
   std::printf("reference: %.1f s, its own block error (stderr, RMS relative) %.4f\n", ref.seconds,
               ref_error);
@@ -145,7 +200,7 @@ int main(int argc, char** argv) {
     scene.settings.method = *method;
     scene.settings.seed = 1;
     double first_under = -1;
-    for (int step = 0; step < 12; ++step) {
+    for (int step = 0; step < max_steps; ++step) {
       const long long effort = 1ll << step;
       std::string what;
       if (*method == RenderMethod::kPathTracer) {
@@ -156,12 +211,20 @@ int main(int argc, char** argv) {
         scene.settings.photon_map.photons_per_node = 50000 * effort;
         what = std::to_string(scene.settings.photon_map.photons_per_node) + " photons, 4 spp";
       } else {
-        scene.settings.samples_per_pixel = 1;
-        scene.settings.radiance_cache.photons_per_node = 25000 * effort;
+        scene.settings.samples_per_pixel = cache_spp;
+        scene.settings.radiance_cache.photons_per_node = cache_photons * effort;
         what = std::to_string(scene.settings.radiance_cache.photons_per_node) + " photons";
       }
       const Timed t = render_timed(scene);
       const double error = block_error(ref.blocks, t.blocks);
+      if (!error_map.empty()) {
+        std::ofstream map(error_map);
+        map << "block_x,block_y,reference,relative_difference\n";
+        const int nb = size / 8;
+        for (int k = 0; k < nb * nb; ++k)
+          map << k % nb << ',' << k / nb << ',' << ref.blocks.mean[k] << ','
+              << t.blocks.mean[k] / ref.blocks.mean[k] - 1.0 << '\n';
+      }
       std::printf("%-15s %-28s %8.2f s  error %.4f\n", name.c_str(), what.c_str(), t.seconds,
                   error);
       std::fflush(stdout);

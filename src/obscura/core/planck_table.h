@@ -24,18 +24,18 @@ class PlanckTable {
       return exact(temperature_k);
     const int i = static_cast<int>(temperature_k);
     const double u = temperature_k - i;
-    const double b0 = value_[i], b1 = value_[i + 1], d0 = slope_[i], d1 = slope_[i + 1];
-    // Hermite basis on [i, i + 1] (unit spacing).
-    const double u2 = u * u, u3 = u2 * u;
-    return (2 * u3 - 3 * u2 + 1) * b0 + (u3 - 2 * u2 + u) * d0 + (-2 * u3 + 3 * u2) * b1 +
-           (u3 - u2) * d1;
+    // The Hermite cubic on [i, i + 1] in powers of u.
+    const double* c = cubic_.data() + 4 * static_cast<std::size_t>(i);
+    return c[0] + u * (c[1] + u * (c[2] + u * c[3]));
   }
 
  private:
   double exact(double temperature_k) const { return formula_.fast(temperature_k); }
   PlanckAtWavelength formula_;
   double t_min_k_;
-  std::vector<double> value_, slope_;  // B and dB/dT at 0, 1, …, kMaxTableTemperatureK K
+  // Per interval [i, i + 1] K: the cubic through B and dB/dT at both ends
+  // (cubic Hermite), as the coefficients of 1, u, u², u³.
+  std::vector<double> cubic_;
 };
 
 }  // namespace obscura

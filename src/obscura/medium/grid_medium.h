@@ -39,7 +39,7 @@ class GridMedium final : public Medium {
   void march_cells(const Ray& ray, double t_min, double t_max, const MarchOptions& options,
                    MarchVisitor& visit) const override;
   std::optional<GridFrame> grid_frame() const override {
-    return GridFrame{grid_->placement(), grid_->dims()};
+    return GridFrame{grid_->placement(), grid_->dims(), true, grid_.get()};
   }
   // From the majorant blocks the box's cells fall in.
   bool may_be_nonzero(const BBox3& world_box) const override;

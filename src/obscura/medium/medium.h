@@ -63,6 +63,10 @@ struct GridFrame {
   // The medium is exactly trilinear between the frame's voxel centres (a
   // grid's own frame), not just laid out over it.
   bool trilinear = true;
+  // The voxels themselves when the medium is this one grid (clamped to the
+  // edge values in the outer half voxel, zero beyond): what a lattice laid
+  // on the frame may copy instead of sampling the medium point by point.
+  const VoxelGrid* voxels = nullptr;
 };
 
 class Medium {

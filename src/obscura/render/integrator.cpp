@@ -29,4 +29,23 @@ FrameSpectra frame_spectra(const Scene& scene) {
   return spectra;
 }
 
+DistinctNodes distinct_nodes(const FrameSpectra& spectra) {
+  DistinctNodes out;
+  for (const auto& sensor_bands : spectra) {
+    auto& sensor_index = out.index.emplace_back();
+    for (const SpectralNodes& band : sensor_bands) {
+      auto& band_index = sensor_index.emplace_back();
+      for (const SpectralNode& nd : band.nodes()) {
+        int u = 0;
+        while (u < static_cast<int>(out.nodes.size()) &&
+               out.nodes[u].wavelength_um != nd.wavelength_um)
+          ++u;
+        if (u == static_cast<int>(out.nodes.size())) out.nodes.push_back(nd);
+        band_index.push_back(u);
+      }
+    }
+  }
+  return out;
+}
+
 }  // namespace obscura

@@ -45,6 +45,15 @@ FrameSpectra frame_spectra(const Scene& scene);
 // The same for one sensor.
 std::vector<SpectralNodes> sensor_spectra(const Scene& scene, const Sensor& sensor);
 
+// The distinct wavelengths among a frame's nodes (what per-frame caches are
+// kept for: sensors that share a band share them) and, per sensor, band and
+// node, the index of its wavelength among them.
+struct DistinctNodes {
+  std::vector<SpectralNode> nodes;
+  std::vector<std::vector<std::vector<int>>> index;  // [sensor][band][node]
+};
+DistinctNodes distinct_nodes(const FrameSpectra& spectra);
+
 // Per-thread scratch of an integrator, and the counters it keeps while it
 // works (summed into RenderStats by the renderer).
 struct RayWorkspace {

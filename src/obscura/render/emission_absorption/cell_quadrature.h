@@ -18,12 +18,16 @@
 //    differences of S, ∫ e^{−t} P = S₀ I₀ + S[0,½] I₁ + S[0,½,1] (I₂ − t½ I₁),
 //    stable for any D (a thick cell tends to its entry value). The error is
 //    third order in D: |error| ≤ 0.008 D³ max|d³S/dt³| (1 − e^{−D}). The
-//    middle point is used only when it lies in the middle half of [0, D]
-//    (else a line through the ends): the parabola's weights then stay
-//    bounded. The result is linear in the three S values, so noise in them
-//    (the radiance cache's photon estimates) averages out without bias.
+//    middle point is used only when it lies in [0.2 D, 0.8 D] (else a line
+//    through the ends): the parabola's weights then stay bounded. (The
+//    bounds keep away from t½ = D/4, where a cell whose σt rises linearly
+//    from zero puts it, so that rounding does not choose the rule there.) The result is linear in
+//    the three S values, so noise in them (the radiance cache's photon estimates) averages out
+//    without bias.
 #include <algorithm>
 #include <cmath>
+
+#include "obscura/core/fast_exp.h"
 
 namespace obscura {
 
@@ -39,27 +43,34 @@ inline CellEmission integrate_cell(double h, const double sigma_t[3], const doub
   CellEmission out;
   const double d = h / 6.0 * (sigma_t[0] + 4.0 * sigma_t[1] + sigma_t[2]);
   if (!(d > 0.0)) return out;
-  const double e = std::exp(-d);
+  const bool thin = d < kThinCell;
+  const double e = thin ? exp_neg_small(d) : fast_exp(-d);
   out.transmittance = e;
   const double t_half =
       std::clamp(h / 24.0 * (5.0 * sigma_t[0] + 8.0 * sigma_t[1] - sigma_t[2]), 0.0, d);
   if (emissivity[0] == 0.0 && emissivity[1] == 0.0 && emissivity[2] == 0.0) return out;
-  if (d < kThinCell) {
+  if (thin) {
     out.emitted =
-        h / 6.0 * (emissivity[0] + 4.0 * emissivity[1] * std::exp(-t_half) + emissivity[2] * e);
+        h / 6.0 * (emissivity[0] + 4.0 * emissivity[1] * exp_neg_small(t_half) + emissivity[2] * e);
     return out;
   }
   // Source function per point; where σt = 0 the emissivity is 0 too and the
-  // neighbouring value stands in (the point carries no weight there).
+  // neighbouring value stands in. So where σt is below 1e-6 of the cell's
+  // largest: a trilinear σt vanishes only on a face, edge or corner of empty
+  // voxels and grows linearly away from it, so such a point lies within 1e-6
+  // of a cell width of that zero, where ε/σt is the ratio of the rounding
+  // errors of the point's position (float or double) rather than a value of
+  // the field.
+  const double zero_sigma_t = 1e-6 * std::max({sigma_t[0], sigma_t[1], sigma_t[2]});
   double s[3];
-  for (int i = 0; i < 3; ++i) s[i] = sigma_t[i] > 0.0 ? emissivity[i] / sigma_t[i] : -1.0;
+  for (int i = 0; i < 3; ++i) s[i] = sigma_t[i] > zero_sigma_t ? emissivity[i] / sigma_t[i] : -1.0;
   if (s[1] < 0.0) s[1] = std::max(s[0], s[2]);
   if (s[0] < 0.0) s[0] = s[1];
   if (s[2] < 0.0) s[2] = s[1];
   const double i0 = 1.0 - e;
   const double i1 = 1.0 - e * (1.0 + d);
   double integral;
-  if (t_half < 0.25 * d || t_half > 0.75 * d) {
+  if (t_half < 0.2 * d || t_half > 0.8 * d) {
     integral = s[0] * i0 + (s[2] - s[0]) / d * i1;  // the middle adds nothing new: a line
   } else {
     const double i2 = 2.0 - e * (d * d + 2.0 * d + 2.0);
@@ -70,6 +81,21 @@ inline CellEmission integrate_cell(double h, const double sigma_t[3], const doub
   }
   out.emitted = integral;
   return out;
+}
+
+// One cell of a march for `count` spectral nodes, node j's σt and ε at the
+// cell's entry, middle and exit in sigma_t[p][j] and emissivity[p][j]: adds
+// to radiance[j] the cell's emission seen through transmittance[j] (the line
+// so far), then attenuates transmittance[j] by the cell.
+inline void add_cell(double h, int count, const double* const sigma_t[3],
+                     const double* const emissivity[3], double* radiance, double* transmittance) {
+  for (int j = 0; j < count; ++j) {
+    const double st[3] = {sigma_t[0][j], sigma_t[1][j], sigma_t[2][j]};
+    const double em[3] = {emissivity[0][j], emissivity[1][j], emissivity[2][j]};
+    const CellEmission c = integrate_cell(h, st, em);
+    radiance[j] += transmittance[j] * c.emitted;
+    transmittance[j] *= c.transmittance;
+  }
 }
 
 }  // namespace obscura

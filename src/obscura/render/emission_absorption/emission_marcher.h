@@ -42,20 +42,17 @@ class EmissionMarcher final : public MarchVisitor {
     ++cells_;
     const double t[3] = {cell.t_begin, 0.5 * (cell.t_begin + cell.t_end), cell.t_end};
     const bool reuse = cell.continuous_with_previous && have_exit_;
-    if (reuse) {
-      sigma_t_[0] = sigma_t_[2];
-      emissivity_[0] = emissivity_[2];
-    }
+    if (reuse)
+      for (int j = 0; j < count_; ++j) {
+        sigma_t_[0][j] = sigma_t_[2][j];
+        emissivity_[0][j] = emissivity_[2][j];
+      }
     for (int p = reuse ? 1 : 0; p < 3; ++p) point(cell, p, t[p]);
     have_exit_ = true;
-    const double h = cell.t_end - cell.t_begin;
-    for (int j = 0; j < count_; ++j) {
-      const double st[3] = {sigma_t_[0][j], sigma_t_[1][j], sigma_t_[2][j]};
-      const double em[3] = {emissivity_[0][j], emissivity_[1][j], emissivity_[2][j]};
-      const CellEmission c = integrate_cell(h, st, em);
-      radiance_[j] += transmittance_[j] * c.emitted;
-      transmittance_[j] *= c.transmittance;
-    }
+    const double* sigma_t[3] = {sigma_t_[0].data(), sigma_t_[1].data(), sigma_t_[2].data()};
+    const double* emissivity[3] = {emissivity_[0].data(), emissivity_[1].data(),
+                                   emissivity_[2].data()};
+    add_cell(cell.t_end - cell.t_begin, count_, sigma_t, emissivity, radiance_, transmittance_);
     return true;
   }
 
@@ -75,7 +72,11 @@ class EmissionMarcher final : public MarchVisitor {
         const double a = lerp(mp.sigma_a), b = lerp(mp.sigma_s);
         sa += a;
         ss += b;
-        if constexpr (InScattering::kWantsG) gs += b * lerp(mp.g);
+        // g weighted by σs across wavelength as across space: the node's
+        // σs g over its σs (as LatticeVolume's records).
+        if constexpr (InScattering::kWantsG)
+          gs += (1.0 - lerp.frac) * mp.sigma_s[lerp.sample0] * mp.g[lerp.sample0] +
+                lerp.frac * mp.sigma_s[lerp.sample1] * mp.g[lerp.sample1];
         if (a != 0.0) em += a * planck(mp.temperature_k);
       }
       sigma_t_[p][j] = sa + ss;

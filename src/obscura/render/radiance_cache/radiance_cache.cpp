@@ -11,6 +11,7 @@
 #include "obscura/core/byte_stream.h"
 #include "obscura/core/check.h"
 #include "obscura/core/error.h"
+#include "obscura/core/memory_limit.h"
 #include "obscura/core/parallel.h"
 #include "obscura/render/photon_map/photon_tracing.h"
 
@@ -92,6 +93,16 @@ void for_blocks_shared(const ProcessGroup& processes, std::size_t blocks, int th
 
 }  // namespace
 
+namespace {
+
+std::vector<SpectralLerp> lerps_of(const std::vector<SpectralNode>& nodes) {
+  std::vector<SpectralLerp> lerps;
+  for (const SpectralNode& nd : nodes) lerps.push_back(nd.lerp());
+  return lerps;
+}
+
+}  // namespace
+
 RadianceCache::RadianceCache(const Scene& scene, const std::vector<SpectralNode>& nodes,
                              const ProcessGroup& processes)
     : lattice_(*scene.medium, scene.settings.radiance_cache.voxel_m,
@@ -101,49 +112,46 @@ RadianceCache::RadianceCache(const Scene& scene, const std::vector<SpectralNode>
       sh_degree_(scene.settings.radiance_cache.sh_degree),
       sh_count_(sh_coefficient_count(sh_degree_)),
       spectral_count_(static_cast<int>(scene.medium->wavelengths_um().size())),
-      has_sun_(scene.sun.enabled) {
+      has_sun_(scene.sun.enabled),
+      volume_(lattice_, lerps_of(nodes), record::light_stride(sh_count_),
+              LatticeVolume::aligned_grid(*scene.medium, lattice_), scene.settings.threads,
+              "render/radiance_cache/voxel_m") {
   const auto start = std::chrono::steady_clock::now();
+  // What building it takes besides the records: the kernels' σs integrals,
+  // the sun's depths per sample and one node's splat sums.
   const std::size_t slots = lattice_.slot_count();
-  const double bytes =
-      static_cast<double>(slots) *
-      (sizeof(float) * (spectral_count_ + 1 + nodes.size() * sh_count_ + spectral_count_) +
-       sizeof(double) * sh_count_);
-  if (bytes > 0.8 * static_cast<double>(available_memory_bytes()))
-    throw InputError("", "render/radiance_cache/voxel_m",
-                     fmt::format("the cache would take {:.3g} GB ({} nodes at {:.4g} m), more "
-                                 "than this machine has free: give a larger voxel_m",
-                                 bytes / 1e9, slots, lattice_.spacing_m()));
+  const double bytes = static_cast<double>(slots) *
+                       (sizeof(float) * (2 * spectral_count_ + 1) + sizeof(double) * sh_count_);
+  check_memory(static_cast<std::uint64_t>(bytes), "", "render/radiance_cache/voxel_m",
+               fmt::format("building the radiance cache ({} nodes at {:.4g} m)", slots,
+                           lattice_.spacing_m()));
   const std::vector<float> kernel_sigma_s = kernel_scattering(scene);
   const auto sun_start = std::chrono::steady_clock::now();
-  compute_sun(scene);
+  compute_sun(scene, nodes);
   sun_seconds = seconds_since(sun_start);
-  radiance_.resize(nodes.size());
   for (std::size_t u = 0; u < nodes.size(); ++u)
     splat(scene, nodes[u], static_cast<int>(u), kernel_sigma_s);
   seconds = seconds_since(start);
 }
 
-std::size_t RadianceCache::memory_bytes() const {
-  std::size_t n = sun_.size() * sizeof(float);
-  for (const auto& r : radiance_) n += r.size() * sizeof(float);
-  return n;
-}
+std::size_t RadianceCache::memory_bytes() const { return volume_.memory_bytes(); }
 
-void RadianceCache::compute_sun(const Scene& scene) {
-  const std::size_t per_slot = static_cast<std::size_t>(spectral_count_) + 1;
-  sun_.assign(lattice_.slot_count() * per_slot, 0.0f);
+void RadianceCache::compute_sun(const Scene& scene, const std::vector<SpectralNode>& nodes) {
   if (!has_sun_) return;
+  const std::size_t per_slot = static_cast<std::size_t>(spectral_count_) + 1;
+  // τ_sun per medium sample, then the visibility, per slot.
+  std::vector<float> sun(lattice_.slot_count() * per_slot, 0.0f);
   const Vec3 to_sun = scene.sun.direction();
   // A surface within one node diagonal does not shade a node: the node is
   // then on or just under it (the ground beneath a cloud's lowest nodes),
   // and its values serve the cells above.
   const double near_m = std::sqrt(3.0) * lattice_.spacing_m();
   for_blocks_shared(
-      *processes_, lattice_.block_count(), scene.settings.threads, sun_,
-      per_slot * CacheLattice::kBlockNodes, [&](std::size_t block) {
+      *processes_, lattice_.block_count(), scene.settings.threads, sun,
+      per_slot * NodeLattice::kBlockNodes, [&](std::size_t block) {
         std::vector<double> tau(static_cast<std::size_t>(spectral_count_));
-        for (std::size_t slot = block * CacheLattice::kBlockNodes;
-             slot < (block + 1) * CacheLattice::kBlockNodes; ++slot) {
+        for (std::size_t slot = block * NodeLattice::kBlockNodes;
+             slot < (block + 1) * NodeLattice::kBlockNodes; ++slot) {
           if (!lattice_.slot_inside(slot)) continue;
           const Ray ray{lattice_.slot_position(slot), to_sun};
           SurfaceHit hit;
@@ -152,11 +160,25 @@ void RadianceCache::compute_sun(const Scene& scene) {
           std::fill(tau.begin(), tau.end(), 0.0);
           OpticalDepth depth(tau.data());
           scene.medium->march_cells(ray, 0.0, std::numeric_limits<double>::infinity(), {}, depth);
-          float* out = sun_.data() + slot * per_slot;
+          float* out = sun.data() + slot * per_slot;
           for (int k = 0; k < spectral_count_; ++k) out[k] = static_cast<float>(tau[k]);
           out[spectral_count_] = shaded ? 0.0f : 1.0f;
         }
       });
+  // Into every spectral node's records, τ_sun at its wavelength.
+  parallel_for(lattice_.block_count(), scene.settings.threads, [&](std::size_t block) {
+    std::vector<double> tau(static_cast<std::size_t>(spectral_count_));
+    for (std::size_t slot = block * NodeLattice::kBlockNodes;
+         slot < (block + 1) * NodeLattice::kBlockNodes; ++slot) {
+      const float* in = sun.data() + slot * per_slot;
+      for (int k = 0; k < spectral_count_; ++k) tau[k] = in[k];
+      for (std::size_t u = 0; u < nodes.size(); ++u) {
+        float* r = volume_.record(static_cast<int>(u), slot);
+        r[record::kTauSun] = static_cast<float>(nodes[u].lerp()(tau.data()));
+        r[record::kSunVisibility] = in[spectral_count_];
+      }
+    }
+  });
 }
 
 std::vector<float> RadianceCache::kernel_scattering(const Scene& scene) const {
@@ -176,8 +198,8 @@ std::vector<float> RadianceCache::kernel_scattering(const Scene& scene) const {
     at_nodes.assign(slots * static_cast<std::size_t>(ns), 0.0f);
     parallel_for(lattice_.block_count(), scene.settings.threads, [&](std::size_t block) {
       MediumPoint point;
-      for (std::size_t slot = block * CacheLattice::kBlockNodes;
-           slot < (block + 1) * CacheLattice::kBlockNodes; ++slot) {
+      for (std::size_t slot = block * NodeLattice::kBlockNodes;
+           slot < (block + 1) * NodeLattice::kBlockNodes; ++slot) {
         if (!lattice_.slot_inside(slot)) continue;
         medium.coefficients_at(lattice_.slot_position(slot), point);
         for (int k = 0; k < ns; ++k) at_nodes[slot * ns + k] = static_cast<float>(point.sigma_s[k]);
@@ -199,11 +221,11 @@ std::vector<float> RadianceCache::kernel_scattering(const Scene& scene) const {
     }
   for_blocks_shared(
       *processes_, lattice_.block_count(), scene.settings.threads, out,
-      static_cast<std::size_t>(ns) * CacheLattice::kBlockNodes, [&](std::size_t block) {
+      static_cast<std::size_t>(ns) * NodeLattice::kBlockNodes, [&](std::size_t block) {
         MediumPoint point;
         std::vector<double> sum(static_cast<std::size_t>(ns));
-        for (std::size_t slot = block * CacheLattice::kBlockNodes;
-             slot < (block + 1) * CacheLattice::kBlockNodes; ++slot) {
+        for (std::size_t slot = block * NodeLattice::kBlockNodes;
+             slot < (block + 1) * NodeLattice::kBlockNodes; ++slot) {
           if (!lattice_.slot_inside(slot)) continue;
           const Vec3 node = lattice_.to_lattice(lattice_.slot_position(slot));
           const int ni = static_cast<int>(std::lround(node.x)),
@@ -215,7 +237,7 @@ std::vector<float> RadianceCache::kernel_scattering(const Scene& scene) const {
               for (int dj = -r; dj <= r; ++dj)
                 for (int di = -r; di <= r; ++di) {
                   const std::size_t m = lattice_.slot_of(ni + di, nj + dj, nk + dk);
-                  if (m == CacheLattice::kNoSlot) continue;
+                  if (m == NodeLattice::kNoSlot) continue;
                   const double w = overlap[di + r] * overlap[dj + r] * overlap[dk + r];
                   for (int k = 0; k < ns; ++k) sum[k] += w * at_nodes[m * ns + k];
                 }
@@ -275,7 +297,7 @@ void RadianceCache::splat(const Scene& scene, const SpectralNode& node, int inde
         for (int i = i0; i < i0 + 2 * r; ++i) {
           const double w = wyz * std::max(0.0, 1.0 - std::abs(u.x - i) / r);
           const std::size_t slot = lattice_.slot_of(i, j, k);
-          if (w == 0.0 || slot == CacheLattice::kNoSlot) continue;
+          if (w == 0.0 || slot == NodeLattice::kNoSlot) continue;
           double* s = sum.data() + slot * sh_count_;
           const double weight = w * p.power / volume;
           for (int c = 0; c < sh_count_; ++c) s[c] += weight * y[c];
@@ -285,18 +307,17 @@ void RadianceCache::splat(const Scene& scene, const SpectralNode& node, int inde
   }
   // Divide by ∫ K σs dV (kernel_scattering), at the node's wavelength.
   const SpectralLerp lerp = node.lerp();
-  std::vector<float>& out = radiance_[static_cast<std::size_t>(index)];
-  out.assign(slots * sh_count_, 0.0f);
   parallel_for(lattice_.block_count(), scene.settings.threads, [&](std::size_t block) {
     std::vector<double> samples(static_cast<std::size_t>(spectral_count_));
-    for (std::size_t slot = block * CacheLattice::kBlockNodes;
-         slot < (block + 1) * CacheLattice::kBlockNodes; ++slot) {
+    for (std::size_t slot = block * NodeLattice::kBlockNodes;
+         slot < (block + 1) * NodeLattice::kBlockNodes; ++slot) {
       for (int k = 0; k < spectral_count_; ++k)
         samples[k] = kernel_sigma_s[slot * spectral_count_ + k];
       const double norm = lerp(samples.data());
       if (!(norm > 0.0)) continue;
+      float* out = volume_.record(index, slot) + record::kSh;
       for (int c = 0; c < sh_count_; ++c)
-        out[slot * sh_count_ + c] = static_cast<float>(sum[slot * sh_count_ + c] / norm);
+        out[c] = static_cast<float>(sum[slot * sh_count_ + c] / norm);
     }
   });
   splat_seconds += seconds_since(t0);

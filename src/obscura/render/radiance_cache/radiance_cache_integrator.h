@@ -1,14 +1,12 @@
 #pragma once
 // "method": "radiance-cache": per frame, one RadianceCache for every distinct
 // spectral node of every sensor's bands; then each camera ray is a
-// deterministic march (render/emission_absorption/emission_marcher.h): in
-// every medium cell the emission σa B(T) and the scattered light σs J are
-// integrated together with the cell quadrature and the exact transmittance,
-//   J(x, ω) = E_sun p_HG(ω_sun·ω) e^{−τ_sun(x)} + Σ_l g^l Σ_m Y_lm(ω) c_lm(x),
-// τ_sun and c_lm trilinear from the cache: no shadow ray, no environment ray,
-// no nearest-neighbour query. Behind the medium: render/background.h, as for
-// emission–absorption, so that a frame without a cloud is the
-// emission–absorption image exactly.
+// deterministic march (cache_march.h) that integrates the emission and the
+// cached scattered light together with the exact transmittance of every cell:
+// over the cache's records alone when its lattice is laid on the cloud's own
+// voxel grid, else over the medium's cells. Behind the medium:
+// render/background.h, as for emission–absorption, so that a frame without a
+// cloud is the emission–absorption image exactly.
 #include <memory>
 #include <vector>
 
@@ -36,9 +34,8 @@ class RadianceCacheIntegrator final : public Integrator {
  private:
   const Scene& scene_;
   const FrameSpectra& spectra_;
-  std::vector<SpectralNode> distinct_;                     // the cache's nodes
-  std::vector<std::vector<std::vector<int>>> node_index_;  // [sensor][band][node] → distinct
-  std::unique_ptr<RadianceCache> cache_;                   // null without a medium
+  DistinctNodes distinct_;                // the cache's nodes
+  std::unique_ptr<RadianceCache> cache_;  // null without a medium
   PreparationStats preparation_;
 };
 

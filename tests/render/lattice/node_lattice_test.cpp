@@ -1,6 +1,6 @@
-// The radiance cache's lattice (render/radiance_cache/cache_lattice.h): where
+// The radiance cache's lattice (render/lattice/node_lattice.h): where
 // its nodes are, how a point finds its eight, and which blocks exist.
-#include "obscura/render/radiance_cache/cache_lattice.h"
+#include "obscura/render/lattice/node_lattice.h"
 
 #include <gtest/gtest.h>
 
@@ -20,11 +20,11 @@ std::shared_ptr<HomogeneousMedium> box(const BBox3& b) {
                                              300.0);
 }
 
-TEST(CacheLattice, AtAGridsVoxelSizeItsNodesAreTheVoxelCentres) {
+TEST(NodeLattice, AtAGridsVoxelSizeItsNodesAreTheVoxelCentres) {
   const Mat3 r = rotation_from_euler_deg({0, 0, 30});
   auto grid = testing::random_grid({10, 9, 4}, 1, 3, r);
   const GridMedium medium(grid);
-  const CacheLattice lattice(medium, 0.0, 0.0, 1u << 30);
+  const NodeLattice lattice(medium, 0.0, 0.0, 1u << 30);
   EXPECT_DOUBLE_EQ(lattice.spacing_m(), 0.37);
   EXPECT_EQ(lattice.dims()[0], 12);  // the voxels plus a rim node each side
   EXPECT_EQ(lattice.dims()[2], 6);
@@ -37,9 +37,9 @@ TEST(CacheLattice, AtAGridsVoxelSizeItsNodesAreTheVoxelCentres) {
   EXPECT_NEAR(u.z, 1.0, 1e-12);
 }
 
-TEST(CacheLattice, CornerWeightsReproduceLinearFields) {
+TEST(NodeLattice, CornerWeightsReproduceLinearFields) {
   const auto medium = box(BBox3({0, 0, 0}, {2, 1, 1}));
-  const CacheLattice lattice(*medium, 0.25, 0.0, 1u << 30);
+  const NodeLattice lattice(*medium, 0.25, 0.0, 1u << 30);
   Rng rng(3, 0);
   for (int i = 0; i < 200; ++i) {
     const Vec3 p(2 * rng.uniform(), rng.uniform(), rng.uniform());
@@ -48,7 +48,7 @@ TEST(CacheLattice, CornerWeightsReproduceLinearFields) {
     ASSERT_TRUE(lattice.corners(p, slot, w));
     double sum = 0, x = 0;
     for (int c = 0; c < 8; ++c) {
-      ASSERT_NE(slot[c], CacheLattice::kNoSlot);
+      ASSERT_NE(slot[c], NodeLattice::kNoSlot);
       sum += w[c];
       x += w[c] * lattice.slot_position(slot[c]).x;
     }
@@ -61,20 +61,20 @@ TEST(CacheLattice, CornerWeightsReproduceLinearFields) {
   EXPECT_TRUE(lattice.corners(Vec3(2.0, 1.0, 1.0), slot, w));  // the far corner
 }
 
-TEST(CacheLattice, PeriodicLatticeWrapsSideways) {
+TEST(NodeLattice, PeriodicLatticeWrapsSideways) {
   const auto slab = box(BBox3({-1e3, -1e3, 0}, {1e3, 1e3, 1}));
-  const CacheLattice lattice(*slab, 0.1, 1.0, 1u << 30);
+  const NodeLattice lattice(*slab, 0.1, 1.0, 1u << 30);
   EXPECT_TRUE(lattice.periodic());
   EXPECT_EQ(lattice.dims()[0], 10);
   EXPECT_EQ(lattice.slot_of(-1, 3, 2), lattice.slot_of(9, 3, 2));
   EXPECT_EQ(lattice.slot_of(10, 13, 2), lattice.slot_of(0, 3, 2));
-  EXPECT_EQ(lattice.slot_of(0, 0, -1), CacheLattice::kNoSlot);  // not in z
+  EXPECT_EQ(lattice.slot_of(0, 0, -1), NodeLattice::kNoSlot);  // not in z
   std::array<std::size_t, 8> slot;
   std::array<double, 8> w;
   EXPECT_TRUE(lattice.corners(Vec3(57.31, -8.02, 0.5), slot, w));
 }
 
-TEST(CacheLattice, BlocksExistOnlyNearTheMedium) {
+TEST(NodeLattice, BlocksExistOnlyNearTheMedium) {
   // A grid that is empty except one voxel in a corner: one block of 8³ nodes
   // (and its neighbours reaching it) instead of all of them.
   GridPlacement p;
@@ -82,17 +82,17 @@ TEST(CacheLattice, BlocksExistOnlyNearTheMedium) {
   auto grid = std::make_shared<VoxelGrid>(GridDims{64, 64, 64}, p, std::vector<double>{1.0});
   grid->sigma_s(0)[0] = 1.0f;
   const GridMedium medium(grid);
-  const CacheLattice lattice(medium, 0.0, 0.0, 1u << 30);
+  const NodeLattice lattice(medium, 0.0, 0.0, 1u << 30);
   EXPECT_LE(lattice.block_count(), 8u);
   EXPECT_GE(lattice.block_count(), 1u);
-  EXPECT_NE(lattice.slot_of(1, 1, 1), CacheLattice::kNoSlot);
-  EXPECT_EQ(lattice.slot_of(40, 40, 40), CacheLattice::kNoSlot);
+  EXPECT_NE(lattice.slot_of(1, 1, 1), NodeLattice::kNoSlot);
+  EXPECT_EQ(lattice.slot_of(40, 40, 40), NodeLattice::kNoSlot);
 }
 
-TEST(CacheLattice, RefusesMoreNodesThanItMayHold) {
+TEST(NodeLattice, RefusesMoreNodesThanItMayHold) {
   const auto medium = box(BBox3({0, 0, 0}, {10, 10, 10}));
   try {
-    const CacheLattice lattice(*medium, 0.01, 0.0, 1000000);
+    const NodeLattice lattice(*medium, 0.01, 0.0, 1000000);
     ADD_FAILURE() << "a 10⁹-node lattice was accepted";
   } catch (const InputError& e) {
     EXPECT_EQ(e.field(), "render/radiance_cache/voxel_m");

@@ -1,4 +1,4 @@
-#include "obscura/render/radiance_cache/cache_lattice.h"
+#include "obscura/render/lattice/node_lattice.h"
 
 #include <fmt/format.h>
 
@@ -27,8 +27,8 @@ int wrap(int i, int n) {
 
 }  // namespace
 
-CacheLattice::CacheLattice(const Medium& medium, double spacing_m, double period_m,
-                           std::size_t max_nodes) {
+NodeLattice::NodeLattice(const Medium& medium, double spacing_m, double period_m,
+                         std::size_t max_nodes) {
   const BBox3 b = medium.bounds();
   const std::optional<GridFrame> frame = medium.grid_frame();
   Vec3 lengths = b.extent();
@@ -74,7 +74,7 @@ CacheLattice::CacheLattice(const Medium& medium, double spacing_m, double period
   allocate_blocks(medium);
 }
 
-void CacheLattice::allocate_blocks(const Medium& medium) {
+void NodeLattice::allocate_blocks(const Medium& medium) {
   for (int a = 0; a < 3; ++a) block_dims_[a] = (dims_[a] + kBlock - 1) / kBlock;
   block_index_.assign(static_cast<std::size_t>(block_dims_[0]) * block_dims_[1] * block_dims_[2],
                       -1);
@@ -101,7 +101,7 @@ void CacheLattice::allocate_blocks(const Medium& medium) {
       }
 }
 
-std::size_t CacheLattice::slot_of(int i, int j, int k) const {
+std::size_t NodeLattice::slot_of(int i, int j, int k) const {
   if (periodic_) {
     i = wrap(i, dims_[0]);
     j = wrap(j, dims_[1]);
@@ -117,24 +117,25 @@ std::size_t CacheLattice::slot_of(int i, int j, int k) const {
          kBlock * ((j % kBlock) + kBlock * (k % kBlock));
 }
 
-Vec3 CacheLattice::slot_position(std::size_t slot) const {
+std::array<int, 3> NodeLattice::slot_node(std::size_t slot) const {
   const std::array<int, 3>& b = blocks_[slot / kBlockNodes];
   const int local = static_cast<int>(slot % kBlockNodes);
-  const Vec3 node(b[0] * kBlock + local % kBlock, b[1] * kBlock + (local / kBlock) % kBlock,
-                  b[2] * kBlock + local / (kBlock * kBlock));
-  return origin_ + rotation_ * (node * h_);
+  return {b[0] * kBlock + local % kBlock, b[1] * kBlock + (local / kBlock) % kBlock,
+          b[2] * kBlock + local / (kBlock * kBlock)};
 }
 
-bool CacheLattice::slot_inside(std::size_t slot) const {
-  const std::array<int, 3>& b = blocks_[slot / kBlockNodes];
-  const int local = static_cast<int>(slot % kBlockNodes);
-  return b[0] * kBlock + local % kBlock < dims_[0] &&
-         b[1] * kBlock + (local / kBlock) % kBlock < dims_[1] &&
-         b[2] * kBlock + local / (kBlock * kBlock) < dims_[2];
+Vec3 NodeLattice::slot_position(std::size_t slot) const {
+  const std::array<int, 3> n = slot_node(slot);
+  return origin_ + rotation_ * (Vec3(n[0], n[1], n[2]) * h_);
 }
 
-bool CacheLattice::corners(const Vec3& p, std::array<std::size_t, 8>& slot,
-                           std::array<double, 8>& w) const {
+bool NodeLattice::slot_inside(std::size_t slot) const {
+  const std::array<int, 3> n = slot_node(slot);
+  return n[0] < dims_[0] && n[1] < dims_[1] && n[2] < dims_[2];
+}
+
+bool NodeLattice::corners(const Vec3& p, std::array<std::size_t, 8>& slot,
+                          std::array<double, 8>& w) const {
   const Vec3 u = to_lattice(p);
   std::array<int, 3> i0;
   std::array<double, 3> f;

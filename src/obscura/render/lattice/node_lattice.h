@@ -1,5 +1,6 @@
 #pragma once
-// The nodes the radiance cache keeps its values at: a regular lattice, node
+// The nodes at which per-frame values over a medium are kept (the radiance
+// cache's light, the lattice march's records: lattice_march.h): a regular lattice, node
 // (i, j, k) at origin + R h (i, j, k) (R the rotation of the cloud's grid, h
 // the spacing), stored in blocks of 8³ nodes that exist only where the medium
 // may be non-zero. Values between nodes are trilinear. Aligned with a grid
@@ -18,7 +19,7 @@
 
 namespace obscura {
 
-class CacheLattice {
+class NodeLattice {
  public:
   static constexpr int kBlock = 8;  // nodes per block side
   static constexpr int kBlockNodes = kBlock * kBlock * kBlock;
@@ -29,7 +30,7 @@ class CacheLattice {
   // medium may be non-zero (within one spacing) are allocated. Throws
   // InputError naming "render/radiance_cache/voxel_m" when the lattice
   // would need more than `max_nodes` nodes.
-  CacheLattice(const Medium& medium, double spacing_m, double period_m, std::size_t max_nodes);
+  NodeLattice(const Medium& medium, double spacing_m, double period_m, std::size_t max_nodes);
 
   double spacing_m() const { return h_; }
   const std::array<int, 3>& dims() const { return dims_; }
@@ -40,6 +41,13 @@ class CacheLattice {
   // The world position of a slot's node, and whether that node is inside the
   // lattice (the last block along an axis may reach past it).
   Vec3 slot_position(std::size_t slot) const;
+  // The node (i, j, k) a slot holds, and the first node of a held block
+  // (whose slot b kBlockNodes + i + 8 j + 64 k holds that node plus (i, j, k)).
+  std::array<int, 3> slot_node(std::size_t slot) const;
+  std::array<int, 3> block_first_node(std::size_t block) const {
+    const std::array<int, 3>& b = blocks_[block];
+    return {b[0] * kBlock, b[1] * kBlock, b[2] * kBlock};
+  }
   bool slot_inside(std::size_t slot) const;
 
   // The 8 nodes around world point p and their trilinear weights; corners in
@@ -50,8 +58,24 @@ class CacheLattice {
 
   // The slot of node (i, j, k) (wrapped when periodic), kNoSlot if absent.
   std::size_t slot_of(int i, int j, int k) const;
+  // Blocks per axis, and the first slot of block (bx, by, bz) (kNoSlot if
+  // absent); node (i, j, k) of a held block is at that slot plus
+  // (i mod 8) + 8 (j mod 8) + 64 (k mod 8).
+  const std::array<int, 3>& block_dims() const { return block_dims_; }
+  std::size_t block_first_slot(int bx, int by, int bz) const {
+    const std::int32_t b =
+        block_index_[static_cast<std::size_t>(bx) +
+                     static_cast<std::size_t>(block_dims_[0]) *
+                         (static_cast<std::size_t>(by) +
+                          static_cast<std::size_t>(block_dims_[1]) * static_cast<std::size_t>(bz))];
+    return b < 0 ? kNoSlot : static_cast<std::size_t>(b) * kBlockNodes;
+  }
+  // The origin's world position (node (0, 0, 0)).
+  const Vec3& origin() const { return origin_; }
   // Lattice coordinates of a world point (node units).
   Vec3 to_lattice(const Vec3& p) const { return rotation_t_ * (p - origin_) / h_; }
+  // A world direction in node units per metre.
+  Vec3 to_lattice_direction(const Vec3& d) const { return rotation_t_ * d / h_; }
   const Mat3& rotation() const { return rotation_; }
 
  private:
