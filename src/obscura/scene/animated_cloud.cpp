@@ -9,14 +9,17 @@
 namespace obscura {
 
 AnimatedCloud::AnimatedCloud(std::string name, CloudManifest manifest, double activation_s,
-                             std::optional<double> deactivation_s, std::size_t cache_capacity)
+                             std::optional<double> deactivation_s, std::size_t cache_capacity,
+                             KeyframeCache::Loader loader)
     : name_(std::move(name)),
       manifest_(std::move(manifest)),
       activation_s_(activation_s),
       deactivation_s_(deactivation_s),
-      cache_(cache_capacity, [](const std::filesystem::path& file) {
-        return std::shared_ptr<const VoxelGrid>(read_cloud_keyframe(file).grid);
-      }) {}
+      cache_(
+          cache_capacity,
+          loader ? std::move(loader) : KeyframeCache::Loader([](const std::filesystem::path& file) {
+            return std::shared_ptr<const VoxelGrid>(read_cloud_keyframe(file).grid);
+          })) {}
 
 LifecycleState AnimatedCloud::state(double t) const {
   return manifest_.lifecycle.at(t, activation_s_, deactivation_s_);

@@ -16,9 +16,12 @@ namespace obscura {
 
 class AnimatedCloud {
  public:
-  // Keyframes are read on demand through a cache of `cache_capacity` grids.
+  // Keyframes are read on demand through a cache of `cache_capacity` grids,
+  // by `loader` (default: read_cloud_keyframe; a vdb-density sequence reads
+  // another tool's files, scene/vdb_density_cloud.h).
   AnimatedCloud(std::string name, CloudManifest manifest, double activation_s,
-                std::optional<double> deactivation_s, std::size_t cache_capacity = 3);
+                std::optional<double> deactivation_s, std::size_t cache_capacity = 3,
+                KeyframeCache::Loader loader = {});
 
   const std::string& name() const { return name_; }
   const CloudManifest& manifest() const { return manifest_; }

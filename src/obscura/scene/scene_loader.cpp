@@ -21,6 +21,7 @@
 #include "obscura/scene/heightfield.h"
 #include "obscura/scene/mesh_surface.h"
 #include "obscura/scene/scene.h"
+#include "obscura/scene/vdb_density_cloud.h"
 
 namespace obscura {
 
@@ -264,6 +265,7 @@ void parse_cloud(JsonObject o, const std::filesystem::path& base, Scene& scene, 
         name, std::move(manifest), activation, deactivation, static_cast<std::size_t>(cache)));
     return;
   }
+  if (type == "vdb-density") return parse_vdb_density_cloud(o, base, scene, index);
   if (type == "vdb") {
     const std::filesystem::path file = input_file(o, "file", base, "cloud keyframe", scene);
     CloudKeyframe kf = read_cloud_keyframe(file);
@@ -285,7 +287,8 @@ void parse_cloud(JsonObject o, const std::filesystem::path& base, Scene& scene, 
   } else {
     throw o.error(
         "type",
-        fmt::format("unknown cloud type '{}' (expected vdb, homogeneous or animated)", type));
+        fmt::format("unknown cloud type '{}' (expected vdb, vdb-density, homogeneous or animated)",
+                    type));
   }
   o.finish();
   scene.static_clouds.push_back(std::move(m));
