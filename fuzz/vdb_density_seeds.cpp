@@ -4,11 +4,12 @@
 // builds and runs it; it is not part of the build.
 #include "support/tool_vdb.h"
 using namespace obscura::testing;
-using openvdb::Coord; using openvdb::CoordBBox;
+using openvdb::Coord;
+using openvdb::CoordBBox;
 int main(int, char** argv) {
   openvdb::initialize();
   const std::string dir = argv[1];
-  { // Houdini pyro: density, temperature, flame, vel; two blobs far apart
+  {  // Houdini pyro: density, temperature, flame, vel; two blobs far apart
     const auto xf = tool_transform(0.1, {1.5, -2.0, 0.25});
     auto d = tool_grid("density", xf, CoordBBox(Coord(-40, 0, 0), Coord(-36, 3, 4)),
                        [](int i, int j, int k) { return 0.05f * (1 + (i + j + k) % 7); });
@@ -17,9 +18,10 @@ int main(int, char** argv) {
                        [](int i, int, int) { return 0.1f * (i + 41); });
     auto f = tool_grid("flame", xf, CoordBBox(Coord(-39, 1, 1), Coord(-38, 2, 2)),
                        [](int, int, int) { return 0.7f; });
-    write_tool_vdb(dir + "/houdini_pyro.vdb", {d, t, f, tool_velocity(xf, CoordBBox(Coord(-40, 0, 0), Coord(-38, 1, 1)))});
+    write_tool_vdb(dir + "/houdini_pyro.vdb",
+                   {d, t, f, tool_velocity(xf, CoordBBox(Coord(-40, 0, 0), Coord(-38, 1, 1)))});
   }
-  { // Blender Mantaflow cache: half floats
+  {  // Blender Mantaflow cache: half floats
     const auto xf = tool_transform(0.25, {0.0, 0.0, 0.0});
     auto d = tool_grid("density", xf, CoordBBox(Coord(0), Coord(5)),
                        [](int i, int j, int k) { return 0.01f * (i * j + k); });

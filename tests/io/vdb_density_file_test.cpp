@@ -86,7 +86,8 @@ TEST_F(VdbDensityFile, ASparseTreeIsReadOverItsActiveBoxNotItsIndexSpace) {
   const auto xf = tool_transform(0.25);
   auto density = tool_grid("density", xf, CoordBBox(Coord(-2000, 500, 900), Coord(-1997, 503, 903)),
                            density_at);
-  testing::add_blob(*density, CoordBBox(Coord(38000, 502, 900), Coord(38003, 505, 901)), density_at);
+  testing::add_blob(*density, CoordBBox(Coord(38000, 502, 900), Coord(38003, 505, 901)),
+                    density_at);
   const auto p = dir_ / "sparse.vdb";
   write_tool_vdb(p, {density});
   const VdbDensityVolume v = read_vdb_density(p, "density", "");
@@ -99,8 +100,8 @@ TEST_F(VdbDensityFile, ASparseTreeIsReadOverItsActiveBoxNotItsIndexSpace) {
   };
   EXPECT_EQ(at(-2000, 500, 900), density_at(-2000, 500, 900));
   EXPECT_EQ(at(38003, 505, 901), density_at(38003, 505, 901));
-  EXPECT_EQ(at(0, 502, 901), 0.0f);         // between the blobs
-  EXPECT_EQ(at(-1998, 505, 903), 0.0f);     // in the box, outside both blobs
+  EXPECT_EQ(at(0, 502, 901), 0.0f);      // between the blobs
+  EXPECT_EQ(at(-1998, 505, 903), 0.0f);  // in the box, outside both blobs
   // The box's memory (3.8 MB) is checked before it is allocated; the
   // tree's (0.6 MB) fits.
   set_memory_limit(1500000, MemoryLimitSource::kCommandLine);
@@ -138,8 +139,9 @@ TEST_F(VdbDensityFile, AnEmptyDensityGridIsOneEmptyVoxel) {
 TEST_F(VdbDensityFile, AMissingGridNamesTheFilesGrids) {
   const auto p = houdini_file(CoordBBox(Coord(0), Coord(3)));
   const std::string e = error_of(p, "smoke");
-  EXPECT_TRUE(contains(e, "explosion.vdb: smoke: no grid of that name (the file's grids: "
-                          "density, flame, temperature, vel); the scene's \"density_grid\""))
+  EXPECT_TRUE(contains(e,
+                       "explosion.vdb: smoke: no grid of that name (the file's grids: "
+                       "density, flame, temperature, vel); the scene's \"density_grid\""))
       << e;
   EXPECT_TRUE(contains(error_of(p, "density", "heat"), "heat: no grid of that name"));
 }
@@ -168,8 +170,9 @@ TEST_F(VdbDensityFile, NonUniformVoxelsAreRefused) {
   const auto p = dir_ / "stretched.vdb";
   write_tool_vdb(p, {tool_grid("density", xf, CoordBBox(Coord(0), Coord(1)), density_at)});
   const std::string e = error_of(p);
-  EXPECT_TRUE(contains(e, "stretched.vdb: density: transform has non-uniform voxel size "
-                          "(0.1, 0.1, 0.2) m; obscura reads cubic voxels only"))
+  EXPECT_TRUE(contains(e,
+                       "stretched.vdb: density: transform has non-uniform voxel size "
+                       "(0.1, 0.1, 0.2) m; obscura reads cubic voxels only"))
       << e;
 }
 
@@ -183,8 +186,8 @@ TEST_F(VdbDensityFile, AFrustumTransformIsRefused) {
 
 TEST_F(VdbDensityFile, ANonZeroBackgroundIsRefused) {
   const auto p = dir_ / "fogged.vdb";
-  write_tool_vdb(p, {tool_grid("density", tool_transform(), CoordBBox(Coord(0), Coord(1)),
-                               density_at, 0.2f)});
+  write_tool_vdb(
+      p, {tool_grid("density", tool_transform(), CoordBBox(Coord(0), Coord(1)), density_at, 0.2f)});
   EXPECT_TRUE(contains(error_of(p), "density: background value 0.2"));
 }
 

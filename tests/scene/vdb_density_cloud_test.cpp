@@ -35,8 +35,8 @@ const CoordBBox kBox(Coord(-6, 4, 0), Coord(5, 11, 9));  // 12 × 8 × 10 voxels
 
 // A smoke ball, densest in the middle; `scale` varies it between frames.
 float smoke(int i, int j, int k, float scale = 1.0f) {
-  const float r2 = static_cast<float>((i + 0.5) * (i + 0.5) + (j - 7.5) * (j - 7.5) +
-                                      (k - 4.5) * (k - 4.5));
+  const float r2 =
+      static_cast<float>((i + 0.5) * (i + 0.5) + (j - 7.5) * (j - 7.5) + (k - 4.5) * (k - 4.5));
   return scale * 1.6f / (1.0f + 0.08f * r2);
 }
 float heat(int i, int j, int k) { return 0.002f * static_cast<float>(i + j + k + 20); }
@@ -57,9 +57,9 @@ class VdbDensityCloud : public testing::TempDirTest {
                     tool_grid("flame", xf, kBox, [](int, int, int) { return 0.25f; })});
   }
   static nlohmann::json cloud(const std::string& file = "explosion.vdb") {
-    return {{"type", "vdb-density"},   {"file", file},
-            {"material", "soot"},      {"wavelengths_um", kWavelengths},
-            {"density_scale", 0.75},   {"temperature_grid", "temperature"},
+    return {{"type", "vdb-density"},    {"file", file},
+            {"material", "soot"},       {"wavelengths_um", kWavelengths},
+            {"density_scale", 0.75},    {"temperature_grid", "temperature"},
             {"temperature_scale", 900}, {"temperature_offset", 290}};
   }
   static nlohmann::json scene_with(const nlohmann::json& c) {
@@ -144,12 +144,12 @@ TEST_F(VdbDensityCloud, ANumberedSequenceIsKeyframesAtTheFrameRate) {
         material_species_optics(load_material_by_name("soot"), kWavelengths, 0, 0, warnings));
   };
   const std::size_t v = frame(1).index(6, 3, 4);
-  EXPECT_EQ(cloud.stage_grid(0.9), nullptr);                        // before the activation
+  EXPECT_EQ(cloud.stage_grid(0.9), nullptr);  // before the activation
   EXPECT_EQ(cloud.stage_grid(1.25)->sigma_a(1)[v], frame(2).sigma_a(1)[v]);  // frame 2 at 1/4 s
   const float halfway = cloud.stage_grid(1.375)->sigma_a(1)[v];
   EXPECT_NEAR(halfway, 0.5 * (frame(2).sigma_a(1)[v] + frame(3).sigma_a(1)[v]), 1e-6 * halfway);
   EXPECT_EQ(cloud.stage_grid(2.9)->sigma_a(1)[v], frame(3).sigma_a(1)[v]);  // the last, held
-  EXPECT_NE(cloud.stage_grid(3.2), nullptr);  // one frame interval after the deactivation…
+  EXPECT_NE(cloud.stage_grid(3.2), nullptr);   // one frame interval after the deactivation…
   EXPECT_EQ(cloud.stage_grid(3.25), nullptr);  // …it is gone
   EXPECT_EQ(s.input_files.size(), 4u);  // soot.json and three frames (load_scene adds the scene)
 }
@@ -159,8 +159,9 @@ TEST_F(VdbDensityCloud, AMissingFrameIsNamed) {
   nlohmann::json c = cloud("smoke_####.vdb");
   c["frame_rate_hz"] = 24;
   std::string e = error_of(c);
-  EXPECT_TRUE(contains(e, "scene.json: /clouds/0/file: frame 3 of the sequence is missing: no "
-                          "file"))
+  EXPECT_TRUE(contains(e,
+                       "scene.json: /clouds/0/file: frame 3 of the sequence is missing: no "
+                       "file"))
       << e;
   EXPECT_TRUE(contains(e, "smoke_0003.vdb (the folder holds frames 1-2, 4)")) << e;
   c["frames"] = {1, 2};

@@ -49,8 +49,8 @@ std::string frames_text(const std::vector<long long>& frames) {
   for (std::size_t i = 0; i < frames.size();) {
     std::size_t j = i;
     while (j + 1 < frames.size() && frames[j + 1] == frames[j] + 1) ++j;
-    out += (out.empty() ? "" : ", ") + (i == j ? fmt::format("{}", frames[i])
-                                               : fmt::format("{}-{}", frames[i], frames[j]));
+    out += (out.empty() ? "" : ", ") +
+           (i == j ? fmt::format("{}", frames[i]) : fmt::format("{}-{}", frames[i], frames[j]));
     i = j + 1;
   }
   return out;
@@ -65,8 +65,7 @@ bool is_numbered_pattern(const std::filesystem::path& pattern) {
 std::filesystem::path numbered_file(const std::filesystem::path& pattern, long long frame) {
   const auto p = split(pattern.filename().string());
   if (!p) return pattern;
-  return pattern.parent_path() /
-         fmt::format("{}{:0{}d}{}", p->prefix, frame, p->width, p->suffix);
+  return pattern.parent_path() / fmt::format("{}{:0{}d}{}", p->prefix, frame, p->width, p->suffix);
 }
 
 std::vector<NumberedFile> find_numbered_files(const std::filesystem::path& pattern,
@@ -77,9 +76,9 @@ std::vector<NumberedFile> find_numbered_files(const std::filesystem::path& patte
   const auto p = split(name);
   if (!p) throw InputError(source, field, fmt::format("'{}' has no run of '#'", name));
   if (p->suffix.find('#') != std::string::npos)
-    throw InputError(source, field,
-                     fmt::format("'{}' holds two runs of '#'; one stands for the frame number",
-                                 name));
+    throw InputError(
+        source, field,
+        fmt::format("'{}' holds two runs of '#'; one stands for the frame number", name));
   const std::filesystem::path folder =
       pattern.parent_path().empty() ? std::filesystem::path(".") : pattern.parent_path();
   std::error_code ec;
@@ -88,23 +87,23 @@ std::vector<NumberedFile> find_numbered_files(const std::filesystem::path& patte
     if (e.is_regular_file(ec))
       if (const auto f = frame_of(e.path().filename().string(), *p)) frames.push_back(*f);
   if (ec && frames.empty())
-    throw InputError(source, field,
-                     fmt::format("cannot list the folder '{}' ({})", folder.string(), ec.message()));
+    throw InputError(
+        source, field,
+        fmt::format("cannot list the folder '{}' ({})", folder.string(), ec.message()));
   std::sort(frames.begin(), frames.end());
   if (frames.empty())
     throw InputError(source, field,
                      fmt::format("no file of the sequence '{}' in '{}' (expected e.g. {})", name,
-                                 folder.string(),
-                                 numbered_file(pattern, 1).filename().string()));
+                                 folder.string(), numbered_file(pattern, 1).filename().string()));
   const long long from = first.value_or(frames.front()), to = last.value_or(frames.back());
   std::vector<NumberedFile> out;
   for (long long frame = from; frame <= to; ++frame) {
     if (!std::binary_search(frames.begin(), frames.end(), frame))
-      throw InputError(source, field,
-                       fmt::format("frame {} of the sequence is missing: no file {} (the folder "
-                                   "holds frames {})",
-                                   frame, numbered_file(pattern, frame).string(),
-                                   frames_text(frames)));
+      throw InputError(
+          source, field,
+          fmt::format("frame {} of the sequence is missing: no file {} (the folder "
+                      "holds frames {})",
+                      frame, numbered_file(pattern, frame).string(), frames_text(frames)));
     out.push_back({frame, numbered_file(pattern, frame)});
   }
   return out;

@@ -122,9 +122,9 @@ VdbDensityVolume read_vdb_density(const std::filesystem::path& path,
 
   // Voxel (0, 0, 0) of the dense arrays is OpenVDB's voxel `lo`.
   v.placement = index_placement;
-  v.placement.origin_m = index_placement.origin_m +
-                         index_placement.rotation *
-                             (Vec3(lo.x(), lo.y(), lo.z()) * index_placement.voxel_size_m);
+  v.placement.origin_m =
+      index_placement.origin_m +
+      index_placement.rotation * (Vec3(lo.x(), lo.y(), lo.z()) * index_placement.voxel_size_m);
   v.density.assign(v.dims.count(), 0.0f);
   if (!v.empty) {
     DenseXYZ dense(box, v.density.data());

@@ -19,12 +19,12 @@ namespace obscura {
 
 // The grids' values as the tool stored them, x fastest.
 struct VdbDensityVolume {
-  GridDims dims;             // the density grid's active bounding box
-  GridPlacement placement;   // from the grids' transform, origin at the box's corner
+  GridDims dims;                 // the density grid's active bounding box
+  GridPlacement placement;       // from the grids' transform, origin at the box's corner
   int index_min[3] = {0, 0, 0};  // OpenVDB index of voxel (0, 0, 0), for messages
   std::vector<float> density;
   std::vector<float> temperature;  // empty unless a temperature grid was asked for
-  bool empty = false;  // the density grid has no active voxel (dims 1×1×1, value 0)
+  bool empty = false;              // the density grid has no active voxel (dims 1×1×1, value 0)
 };
 
 // Reads `density_grid` and, unless `temperature_grid` is empty, that grid

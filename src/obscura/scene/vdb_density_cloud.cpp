@@ -18,9 +18,8 @@ namespace {
 
 // `values` mapped in place to offset + scale × value, each of which must be
 // finite and >= 0; errors name the voxel by its OpenVDB index.
-void map_values(std::vector<float>& values, double scale, double offset,
-                const VdbDensityVolume& v, const std::string& file, const std::string& grid,
-                const char* what) {
+void map_values(std::vector<float>& values, double scale, double offset, const VdbDensityVolume& v,
+                const std::string& file, const std::string& grid, const char* what) {
   const GridDims& d = v.dims;
   for (std::size_t i = 0; i < values.size(); ++i) {
     const double mapped = offset + scale * static_cast<double>(values[i]);
@@ -188,8 +187,8 @@ void parse_vdb_density_cloud(JsonObject& o, const std::filesystem::path& base, S
     throw o.error("wavelengths_um", e.what());
   }
   if (is_numbered_pattern(file)) return add_sequence(o, file, mapping, optics, scene, index);
-  for (const char* key : {"frame_rate_hz", "frames", "activation", "deactivation", "name",
-                          "cache_keyframes"})
+  for (const char* key :
+       {"frame_rate_hz", "frames", "activation", "deactivation", "name", "cache_keyframes"})
     if (o.has(key))
       throw o.error(key,
                     "belongs to a numbered sequence (a file name with a run of '#', such as "
@@ -199,10 +198,8 @@ void parse_vdb_density_cloud(JsonObject& o, const std::filesystem::path& base, S
   if (!std::filesystem::is_regular_file(file, ec))
     throw o.error("file", fmt::format("cannot open VDB file '{}': no such file", file.string()));
   scene.input_files.push_back(file);
-  scene.static_clouds.push_back(
-      std::make_shared<GridMedium>(std::make_shared<VoxelGrid>(read_vdb_density_cloud(file,
-                                                                                      mapping,
-                                                                                      optics))));
+  scene.static_clouds.push_back(std::make_shared<GridMedium>(
+      std::make_shared<VoxelGrid>(read_vdb_density_cloud(file, mapping, optics))));
 }
 
 }  // namespace obscura

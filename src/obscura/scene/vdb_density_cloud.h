@@ -34,8 +34,8 @@ struct VdbDensityMapping {
 // ambient temperature without a temperature grid. Throws InputError naming
 // the file and the grid (and a voxel by its OpenVDB index where a value maps
 // to a negative or non-finite concentration or temperature).
-VoxelGrid read_vdb_density_cloud(const std::filesystem::path& file, const VdbDensityMapping& mapping,
-                                 const SpeciesOptics& optics);
+VoxelGrid read_vdb_density_cloud(const std::filesystem::path& file,
+                                 const VdbDensityMapping& mapping, const SpeciesOptics& optics);
 
 // Parses one "/clouds/i" object of type "vdb-density" (`o`, relative paths
 // against `base`) into `scene`: a static cloud for one file, an
