@@ -12,7 +12,9 @@ int main(int, char** argv) {
   {  // Houdini pyro: density, temperature, flame, vel; two blobs far apart
     const auto xf = tool_transform(0.1, {1.5, -2.0, 0.25});
     auto d = tool_grid("density", xf, CoordBBox(Coord(-40, 0, 0), Coord(-36, 3, 4)),
-                       [](int i, int j, int k) { return 0.05f * (1 + (i + j + k) % 7); });
+                       [](int i, int j, int k) {
+                         return 0.05f * static_cast<float>(1 + ((i + j + k) % 7 + 7) % 7);
+                       });
     add_blob(*d, CoordBBox(Coord(300, 2, 1), Coord(302, 5, 3)), [](int, int, int) { return 0.3f; });
     auto t = tool_grid("temperature", xf, CoordBBox(Coord(-40, 0, 0), Coord(-37, 2, 2)),
                        [](int i, int, int) { return 0.1f * (i + 41); });
