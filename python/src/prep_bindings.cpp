@@ -9,7 +9,6 @@
 
 #include "bindings.h"
 #include "long_call.h"
-#include "obscura/io/json_reader.h"
 #include "obscura/prep/prepare.h"
 #include "scene_handle.h"
 
@@ -52,21 +51,14 @@ void bind_prep(py::module_& m) {
          const std::optional<std::filesystem::path>& path, std::optional<int> threads,
          const py::object& progress, const std::string& command_line) {
         if (threads && *threads < 0) throw InputError("", "threads", "must be >= 0 (0: all cores)");
-        // A dict is the content of a configuration file at `path` (errors
-        // name it, relative paths resolve against its folder); a path is read.
-        const bool is_dict = py::isinstance<py::dict>(config);
-        if (!is_dict && path)
-          throw InputError("", "path", "names the file a dict stands for; give a dict with it");
-        const std::filesystem::path file =
-            is_dict ? path.value_or("prepare.json") : config.cast<std::filesystem::path>();
-        const nlohmann::json doc = is_dict ? python_to_json(config) : read_json_file(file.string());
+        const JsonArgument config_file = json_argument(config, path, "prepare.json");
         PrepareOptions options;
         options.threads = threads.value_or(0);
         options.command_line = command_line;
         LongCall call(progress);
         options.progress = [&](const std::string& line) { call.report_line(line); };
-        const PrepareReport report =
-            call.run([&] { return prepare_cloud(doc, file, out, options); });
+        const PrepareReport report = call.run(
+            [&] { return prepare_cloud(config_file.doc, config_file.file, out, options); });
         return report_dict(report);
       },
       py::arg("config"), py::arg("out"), py::arg("path"), py::arg("threads"), py::arg("progress"),

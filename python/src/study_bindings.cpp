@@ -11,7 +11,6 @@
 
 #include "bindings.h"
 #include "long_call.h"
-#include "obscura/io/json_reader.h"
 #include "obscura/io/provenance.h"
 #include "obscura/study/study_runner.h"
 #include "obscura/study/study_table.h"
@@ -26,13 +25,8 @@ void bind_study(py::module_& m) {
          const std::optional<std::filesystem::path>& path, std::optional<int> threads, bool resume,
          const py::object& progress, const std::string& command_line) {
         if (threads && *threads < 0) throw InputError("", "threads", "must be >= 0 (0: all cores)");
-        const bool is_dict = py::isinstance<py::dict>(study);
-        if (!is_dict && path)
-          throw InputError("", "path", "names the file a dict stands for; give a dict with it");
-        const std::filesystem::path file =
-            is_dict ? path.value_or("study.json") : study.cast<std::filesystem::path>();
-        const StudySpec spec =
-            is_dict ? parse_study(python_to_json(study), file) : load_study(file);
+        const JsonArgument study_file = json_argument(study, path, "study.json");
+        const StudySpec spec = parse_study(study_file.doc, study_file.file);
         LongCall call(progress);
         StudyOptions options;
         options.threads = threads.value_or(0);

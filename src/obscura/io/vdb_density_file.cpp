@@ -7,13 +7,12 @@
 #include <openvdb/tools/Dense.h>
 
 #include <cstdint>
-#include <system_error>
 
 #include "obscura/core/error.h"
 #include "obscura/core/memory_limit.h"
 #include "obscura/io/vdb_keyframe_layout.h"
 #include "obscura/io/vdb_keyframe_placement.h"
-#include "obscura/io/vdb_stream_check.h"
+#include "obscura/io/vdb_open.h"
 
 namespace obscura {
 namespace {
@@ -66,22 +65,9 @@ openvdb::FloatGrid::Ptr read_float_grid(openvdb::io::File& f, const std::string&
 VdbDensityVolume read_vdb_density(const std::filesystem::path& path,
                                   const std::string& density_grid,
                                   const std::string& temperature_grid) {
-  vdb_format::ensure_openvdb_initialized();
   const std::string file = path.string();
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec))
-    throw InputError(file, "",
-                     std::filesystem::exists(path, ec) ? "is not a regular file" : "no such file");
-  // Every length, offset and chunk against the file first: OpenVDB allocates
-  // what a corrupt file says (vdb_stream_check.h).
-  vdb_format::check_vdb_stream(path);
-
-  openvdb::io::File f(file);
-  try {
-    f.open(/*delayLoad=*/false);  // a bad chunk fails in readGrid, where it can be named
-  } catch (const openvdb::Exception& e) {
-    throw InputError(file, "", fmt::format("not a readable OpenVDB file ({})", e.what()));
-  }
+  const std::unique_ptr<openvdb::io::File> opened = vdb_format::open_checked_vdb_file(path);
+  openvdb::io::File& f = *opened;
   const openvdb::GridBase::Ptr density_header =
       float_grid_header(f, density_grid, file, "density_grid");
   openvdb::GridBase::Ptr temperature_header;

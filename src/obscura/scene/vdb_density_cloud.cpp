@@ -113,11 +113,7 @@ void add_sequence(JsonObject& o, const std::filesystem::path& pattern, const Vdb
   const double rate = o.positive("frame_rate_hz");
   const std::vector<NumberedFile> files =
       find_numbered_files(pattern, first, last, o.file(), o.path_of("file"));
-  const double activation = o.number_or("activation", 0.0);
-  const std::optional<double> deactivation = o.optional_number("deactivation");
-  const std::string name = o.string_or("name", fmt::format("cloud{}", index));
-  const long long cache = o.integer_or("cache_keyframes", 3);
-  if (cache < 2 || cache > 64) throw o.error("cache_keyframes", "must lie in [2, 64]");
+  const AnimatedCloudKeys keys = read_animated_cloud_keys(o, index);
   o.finish();
 
   std::vector<ManifestKeyframe> keyframes;
@@ -137,13 +133,13 @@ void add_sequence(JsonObject& o, const std::filesystem::path& pattern, const Vdb
   CloudManifest manifest{pattern, std::move(keyframes),
                          Lifecycle(std::move(times), spec, pattern.string()), Trajectory()};
   auto cloud = std::make_shared<AnimatedCloud>(
-      name, std::move(manifest), activation, deactivation, static_cast<std::size_t>(cache),
+      keys.name, std::move(manifest), keys.activation_s, keys.deactivation_s, keys.cache_keyframes,
       [m, optics](const std::filesystem::path& file) {
         return std::make_shared<const VoxelGrid>(read_vdb_density_cloud(file, m, optics));
       });
   // The first frame now, through the cache: a wrong grid name or mapping
   // fails at load, not part-way through a render.
-  cloud->stage_grid(activation);
+  cloud->stage_grid(keys.activation_s);
   scene.animated_clouds.push_back(std::move(cloud));
 }
 
