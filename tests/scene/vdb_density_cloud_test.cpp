@@ -14,6 +14,7 @@
 #include "obscura/medium/grid_medium.h"
 #include "obscura/optics/material.h"
 #include "obscura/optics/material_species_optics.h"
+#include "obscura/sequence/sequence_runner.h"
 #include "support/input_error.h"
 #include "support/render_helpers.h"
 #include "support/temp_dir_test.h"
@@ -168,6 +169,22 @@ TEST_F(VdbDensityCloud, AMissingFrameIsNamed) {
   EXPECT_NO_THROW(load(c));
   c["frames"] = {4, 6};
   EXPECT_TRUE(contains(error_of(c), "frame 5 of the sequence is missing")) << error_of(c);
+}
+
+TEST_F(VdbDensityCloud, ABandWithExtinctionOnlyIsAWarningOfTheRun) {
+  nlohmann::json c = cloud();
+  c["material"] = "phosphorus_smoke";  // tabulated (extinction only) in the infrared
+  Scene s = load(c);
+  ASSERT_EQ(s.warnings.size(), 2u);
+  EXPECT_TRUE(contains(s.warnings[1],
+                       "phosphorus_smoke at 10 um: the sources give extinction "
+                       "only"))
+      << s.warnings[1];
+  std::vector<std::string> given;
+  SequenceOptions options;
+  options.on_warning = [&](const std::string& w) { given.push_back(w); };
+  render_sequence(s, {0.0, 1.0}, options);
+  EXPECT_EQ(given, s.warnings);  // once per run, not per frame
 }
 
 TEST_F(VdbDensityCloud, BadKeysAreNamed) {
