@@ -9,9 +9,8 @@
 
 #include "commands.h"
 #include "memory_option.h"
-#include "obscura/core/data_directory.h"
 #include "obscura/core/error.h"
-#include "obscura/validation/validation_cases.h"
+#include "obscura/validation/validation_run.h"
 
 namespace obscura::cli {
 
@@ -38,8 +37,7 @@ void add_options(CLI::App* cmd, ValidateOptions* o) {
                   "slab | furnace | equilibrium | emitting-slab | single-scatter | "
                   "puff-transmittance | all")
       ->required()
-      ->check(CLI::IsMember({"slab", "furnace", "equilibrium", "emitting-slab", "single-scatter",
-                             "puff-transmittance", "all"}));
+      ->check(CLI::IsMember(validation_case_names()));
   cmd->add_option("--tau", o->tau, "Optical thickness (default 1; single-scatter 0.002)");
   cmd->add_option("--g", o->g, "Henyey-Greenstein asymmetry (default 0.5)");
   cmd->add_option("--albedo", o->albedo,
@@ -99,73 +97,25 @@ void add_options(CLI::App* cmd, ValidateOptions* o) {
   cmd->add_flag("--json", o->json, "Print a JSON array of rows instead of a table");
 }
 
-// The cases the command line asks for, run with the chosen solver;
-// `slab_reference` gets the slab's table row when the slab is among them.
-std::vector<ValidationRow> run_cases(const ValidateOptions& o,
-                                     std::optional<SlabReference>& slab_reference) {
-  const double g = o.g.value_or(0.5);
-  ValidationOptions options;
-  options.samples = o.samples.value_or(0);
-  options.settings = o.settings;
-  options.settings.method = *parse_render_method(o.method);  // CLI::IsMember checked it
-  options.settings.photon_map.pure = o.form == "pure";
-  // The cache's photon noise is fixed in its lattice, correlated along every
-  // ray: 4e6 photons bring the furnace's to about 0.03 % (1e6: ±1 % by seed).
-  options.settings.radiance_cache.photons_per_node = 4000000;
-  if (o.photons) {
-    options.settings.photon_map.photons_per_node = *o.photons;
-    options.settings.radiance_cache.photons_per_node = *o.photons;
-  }
-  const bool photonmap = options.settings.method == RenderMethod::kPhotonMap;
-  std::vector<ValidationRow> rows;
-  auto add = [&](std::vector<ValidationRow> r) { rows.insert(rows.end(), r.begin(), r.end()); };
-  const bool all = o.name == "all";
-  if (all || o.name == "slab") {
-    SlabSpec slab;
-    slab.albedo = o.albedo.value_or(0.9);
-    slab.tau = o.tau.value_or(1.0);
-    slab.g = g;
-    slab.incidence =
-        o.incidence == "diffuse" ? SlabIncidence::kDiffuse : SlabIncidence::kCollimated;
-    if (o.incidence == "normal" && o.mu0 != 1.0)
-      throw InputError("", "--mu0",
-                       "give --incidence collimated with --mu0 (normal means mu0 = 1)");
-    slab.mu0 = o.mu0;
-    slab.half_width_m = o.half_width.value_or(photonmap ? 20.0 : 1e6);
-    const std::string table =
-        o.reference.empty() ? (data_directory() / "validation" / "slab_reference.csv").string()
-                            : o.reference;
-    slab_reference = find_slab_reference(table, slab);
-    add(validate_slab(slab, slab_reference, options));
-  }
-  if (all || o.name == "furnace") add(validate_furnace(o.tau.value_or(1.0), g, options));
-  if (all || o.name == "equilibrium")
-    add(validate_equilibrium(o.albedo.value_or(0.8), o.tau.value_or(1.0), g, o.temperature,
-                             options));
-  if (all || o.name == "emitting-slab")
-    add(validate_emitting_slab(o.tau.value_or(1.0), o.temperature, options));
-  if (all || o.name == "single-scatter")
-    add(validate_single_scatter(o.tau.value_or(0.002), g, options));
-  if (all || o.name == "puff-transmittance") add(validate_puff_transmittance(options));
-  return rows;
-}
-
-nlohmann::json rows_json(const std::vector<ValidationRow>& rows) {
-  nlohmann::json out = nlohmann::json::array();
-  auto number_or_null = [](bool judged, double v) {
-    return judged ? nlohmann::json(v) : nlohmann::json();
-  };
-  for (const auto& r : rows)
-    out.push_back({{"case", r.case_name},
-                   {"quantity", r.quantity},
-                   {"reference", number_or_null(r.judged, r.reference)},
-                   {"obtained", r.obtained},
-                   {"relative_error", number_or_null(r.judged, r.relative_error())},
-                   {"stderr", r.stderr_mean},
-                   {"tolerance", r.tolerance},
-                   {"samples", r.samples},
-                   {"pass", r.judged ? nlohmann::json(r.pass) : nlohmann::json()}});
-  return out;
+// The request the command line makes (validation/validation_run.h), whose
+// errors name the options.
+ValidationRun run_cases(const ValidateOptions& o) {
+  ValidationRequest r;
+  r.name = o.name;
+  r.tau = o.tau;
+  r.g = o.g;
+  r.albedo = o.albedo;
+  r.temperature_k = o.temperature;
+  r.incidence = o.incidence;
+  r.mu0 = o.mu0;
+  r.half_width_m = o.half_width;
+  r.reference = o.reference;
+  r.settings = o.settings;
+  r.settings.method = *parse_render_method(o.method);  // CLI::IsMember checked it
+  r.settings.photon_map.pure = o.form == "pure";
+  r.photons_per_node = o.photons;
+  r.samples = o.samples.value_or(0);
+  return run_validation(r);
 }
 
 // The slab's own keys (R, T, T_direct with standard errors), its reference and its rows.
@@ -181,7 +131,7 @@ nlohmann::json slab_json(const std::vector<ValidationRow>& rows,
                                                  {"T_direct", reference->t_direct},
                                                  {"source", reference->source}}
                                 : nlohmann::json();
-  slab["rows"] = rows_json(rows);
+  slab["rows"] = validation_rows_json(rows);
   slab["pass"] = ok;
   return slab;
 }
@@ -224,14 +174,14 @@ Command add_validate_command(CLI::App& app) {
   add_max_memory_option(cmd, max_memory);
   return {cmd, [o, max_memory]() {
             apply_max_memory(*max_memory);
-            std::optional<SlabReference> slab_reference;
-            const std::vector<ValidationRow> rows = run_cases(*o, slab_reference);
-            const bool ok = std::all_of(rows.begin(), rows.end(),
-                                        [](const ValidationRow& r) { return !r.judged || r.pass; });
+            const ValidationRun run = run_cases(*o);
+            const std::vector<ValidationRow>& rows = run.rows;
+            const std::optional<SlabReference>& slab_reference = run.slab_reference;
+            const bool ok = run.ok();
             if (o->json && o->name == "slab")
               std::cout << slab_json(rows, slab_reference, ok).dump(2) << "\n";
             else if (o->json)
-              std::cout << rows_json(rows).dump(2) << "\n";
+              std::cout << validation_rows_json(rows).dump(2) << "\n";
             else
               std::cout << rows_table(rows, slab_reference);
             return ok ? 0 : 1;

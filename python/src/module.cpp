@@ -10,5 +10,9 @@ PYBIND11_MODULE(_obscura, m) {
   obscura::python::bind_optics(m);
   obscura::python::bind_scene(m);
   obscura::python::bind_render(m);
+  obscura::python::bind_analysis(m);
+  obscura::python::bind_validation(m);
+  obscura::python::bind_prep(m);
   obscura::python::bind_sequence(m);
+  obscura::python::bind_study(m);
 }

@@ -9,6 +9,7 @@
 
 #include "bindings.h"
 #include "obscura/analysis/target_mask.h"
+#include "obscura/io/json_reader.h"
 #include "obscura/scene/render_settings.h"
 #include "scene_handle.h"
 
@@ -23,6 +24,15 @@ nlohmann::json python_to_json(const py::handle& value) {
                                .attr("dumps")(value, py::arg("allow_nan") = false)
                                .cast<std::string>();
   return nlohmann::json::parse(text);
+}
+
+JsonArgument json_argument(const py::object& value,
+                           const std::optional<std::filesystem::path>& path,
+                           const char* default_name) {
+  if (py::isinstance<py::dict>(value)) return {path.value_or(default_name), python_to_json(value)};
+  if (path) throw InputError("", "path", "names the file a dict stands for; give a dict with it");
+  const auto file = value.cast<std::filesystem::path>();
+  return {file, read_json_file(file.string())};
 }
 
 namespace {

@@ -4,7 +4,9 @@
 // the same Scene at once (each with the GIL released) take turns.
 #include <pybind11/pybind11.h>
 
+#include <filesystem>
 #include <mutex>
+#include <optional>
 
 #include "obscura/scene/scene.h"
 
@@ -20,5 +22,17 @@ pybind11::object json_to_python(const nlohmann::json& value);
 // A Python object as JSON, through Python's json module (allow_nan=False:
 // NaN is not JSON); TypeError names what json cannot encode.
 nlohmann::json python_to_json(const pybind11::handle& value);
+
+// A configuration given as a file or as a dict with a file's content (prepare,
+// study): the document and the file that names it in errors, whose folder
+// relative paths in it resolve against. A dict stands for `path`, else
+// `default_name` in the current folder; `path` with a file is an error.
+struct JsonArgument {
+  std::filesystem::path file;
+  nlohmann::json doc;
+};
+JsonArgument json_argument(const pybind11::object& value,
+                           const std::optional<std::filesystem::path>& path,
+                           const char* default_name);
 
 }  // namespace obscura::python

@@ -18,6 +18,7 @@
 #include "support/cli_runner.h"
 #include "support/temp_dir_test.h"
 #include "support/test_puff.h"
+#include "support/tool_vdb.h"
 
 namespace fs = std::filesystem;
 
@@ -95,6 +96,30 @@ class Catalogue : public testing::TempDirTest, public ::testing::WithParamInterf
     return write("scene.json", s.dump(2));
   }
   static constexpr const char* kTriangle = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+  // Another tool's VDB file (support/tool_vdb.h): a density grid named
+  // `density_name` beside temperature and velocity grids, on `xf`.
+  std::string tool_vdb(const std::string& name, const std::string& density_name = "density",
+                       openvdb::math::Transform::Ptr xf = testing::tool_transform()) {
+    const openvdb::CoordBBox box(openvdb::Coord(0), openvdb::Coord(3));
+    const auto value = [](int, int, int) { return 0.5f; };
+    testing::write_tool_vdb(dir_ / name, {testing::tool_grid(density_name, xf, box, value),
+                                          testing::tool_grid("temperature", xf, box, value),
+                                          testing::tool_velocity(xf, box)});
+    return path(name);
+  }
+  // A scene whose cloud is a vdb-density cloud of `file` (more keys in `extra`).
+  std::string render_density(const std::string& file,
+                             const nlohmann::json& extra = nlohmann::json::object()) {
+    nlohmann::json cloud = {{"type", "vdb-density"},
+                            {"file", file},
+                            {"material", "soot"},
+                            {"wavelengths_um", {4, 10}},
+                            {"density_scale", 2}};
+    cloud.update(extra);
+    nlohmann::json s = scene();
+    s["clouds"] = {cloud};
+    return render_json(s);
+  }
 };
 
 std::vector<BadInput> catalogue() {
@@ -245,6 +270,49 @@ std::vector<BadInput> catalogue() {
         return c.render_json(C::scene("dir.vdb"));
       },
       1, {"dir.vdb", "is a folder, expected a cloud keyframe file"});
+
+  // ---- other tools' VDB files (vdb-density clouds) ---------------------------
+  add("VdbDensityMissingGrid",
+      [](C& c) { return c.render_density(c.tool_vdb("explosion.vdb", "smoke")); }, 1,
+      {"explosion.vdb: density: no grid of that name", "smoke, temperature, vel",
+       "\"density_grid\""});
+  add("VdbDensityWrongGridType",
+      [](C& c) {
+        return c.render_density(c.tool_vdb("explosion.vdb"), {{"density_grid", "vel"}});
+      },
+      1, {"explosion.vdb: vel: grid holds vec3s values, expected a float grid"});
+  add("VdbDensityNonUniformVoxels",
+      [](C& c) {
+        openvdb::math::Mat4d m = openvdb::math::Mat4d::identity();
+        m(2, 2) = 3.0;
+        return c.render_density(c.tool_vdb("stretched.vdb", "density",
+                                           openvdb::math::Transform::createLinearTransform(m)));
+      },
+      1, {"stretched.vdb: density: transform has non-uniform voxel size (1, 1, 3) m"});
+  add("VdbDensityMissingFrame",
+      [](C& c) {
+        c.tool_vdb("smoke_0001.vdb");
+        c.tool_vdb("smoke_0003.vdb");
+        return c.render_density("smoke_####.vdb", {{"frame_rate_hz", 24}});
+      },
+      1, {"scene.json: /clouds/0/file: frame 2 of the sequence is missing", "smoke_0002.vdb"});
+  add("VdbDensityTruncated",
+      [](C& c) {
+        const std::string p = c.tool_vdb("cut.vdb");
+        fs::resize_file(p, fs::file_size(p) - 7);
+        return c.render_density("cut.vdb");
+      },
+      1, {"cut.vdb", "truncated"});
+  add("VdbDensityScaleMissing",
+      [](C& c) {
+        nlohmann::json s = C::scene();
+        s["clouds"] = {{{"type", "vdb-density"},
+                        {"file", c.tool_vdb("explosion.vdb")},
+                        {"material", "soot"},
+                        {"wavelengths_um", {4, 10}}}};
+        return c.render_json(s);
+      },
+      1, {"scene.json: /clouds/0/density_scale: missing required field"});
   add(
       "InfoOnTruncatedVdb", [](C& c) { return "info " + c.cut_puff(300); }, 1,
       {"cut.vdb", "truncated"}, "");

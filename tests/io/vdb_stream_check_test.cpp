@@ -208,6 +208,39 @@ TEST_F(VdbStreamCheckTest, AMetadataValueOfAnotherSizeThanItsTypeIsRefused) {
   EXPECT_NE(msg.find("int32 value of 8 bytes where OpenVDB reads 4"), std::string::npos) << msg;
 }
 
+// OpenVDB reads a float grid's values as halves when the grid's metadata
+// says "is_saved_as_half_float" (GridBase::saveFloatAsHalf, once readMeta has
+// replaced the metadata the descriptor's "_HalfFloat" type set): found by
+// the vdb_density fuzz harness, a half-float grid whose flag's name was
+// mutated made OpenVDB read full floats and allocate 4.5e18 bytes for a
+// chunk the walk had read as halves (fuzz/regressions/vdb_density).
+TEST_F(VdbStreamCheckTest, TheGridsMetadataNotItsTypeNameSaysWhetherValuesAreHalves) {
+  auto g = sparse_grid("density");
+  g->setSaveFloatAsHalf(true);
+  Bytes b = testing::read_file_bytes(write({g}, openvdb::io::COMPRESS_BLOSC));
+  const std::string key = openvdb::GridBase::META_SAVE_HALF_FLOAT;
+  const auto it = std::search(b.begin(), b.end(), key.begin(), key.end());
+  ASSERT_NE(it, b.end());
+  const auto at = static_cast<std::size_t>(it - b.begin());
+  // The type name still ends in "_HalfFloat", but the flag is gone: OpenVDB
+  // reads floats, so the halves' chunks no longer fit.
+  Bytes renamed = b;
+  renamed[at + key.size() - 1] = 'x';
+  testing::write_file_bytes(dir_ / "renamed.vdb", renamed);
+  const std::string msg = refusal(dir_ / "renamed.vdb");
+  EXPECT_NE(msg.find("grid density"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("the file is corrupt"), std::string::npos) << msg;
+  // The flag's value: name, the type "bool" (uint32 length + 4 bytes), the size, then one byte.
+  const std::size_t value_at = at + key.size() + 4 + 4 + 4;
+  ASSERT_EQ(b[value_at], 1);
+  Bytes two = b;
+  two[value_at] = 2;
+  testing::write_file_bytes(dir_ / "two.vdb", two);
+  EXPECT_NE(refusal(dir_ / "two.vdb").find("'is_saved_as_half_float': a bool of value 2"),
+            std::string::npos)
+      << refusal(dir_ / "two.vdb");
+}
+
 TEST_F(VdbStreamCheckTest, ATreeLargerThanTheMemoryLimitIsRefusedBeforeOpenVdbBuildsIt) {
   const fs::path p = write({sparse_grid("density")}, openvdb::io::COMPRESS_BLOSC);
   set_memory_limit(64 * 1024, MemoryLimitSource::kCommandLine);

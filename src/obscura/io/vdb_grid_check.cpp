@@ -58,8 +58,9 @@ struct TreeCounts {
 
 class FloatTreeCheck {
  public:
-  FloatTreeCheck(VdbStreamReader& r, const GridExtent& g, std::uint32_t compression)
-      : r_(r), g_(g), compression_(compression), half_(g.type.ends_with(kHalfSuffix)) {}
+  // `as_halves`: the values are stored as 16-bit halves (MetadataFacts).
+  FloatTreeCheck(VdbStreamReader& r, const GridExtent& g, std::uint32_t compression, bool as_halves)
+      : r_(r), g_(g), compression_(compression), half_(as_halves) {}
 
   TreeCounts topology() {
     const std::string part = g_.part + " topology";
@@ -210,13 +211,13 @@ void check_grid_data(VdbStreamReader& r, const GridExtent& g) {
   if (compression > (kCompressZip | kCompressActiveMask | kCompressBlosc))
     throw r.error(g.part + " compression",
                   fmt::format("unknown compression flags {:#x}: the file is corrupt", compression));
-  check_metadata_block(r, g.part + " metadata");
+  const MetadataFacts metadata = check_metadata_block(r, g.part + " metadata");
   check_transform(r, g.part);
   if (r.position() > g.end_pos)
     throw r.error(g.part, "its metadata runs past its end: the file is corrupt");
   if (g.instance || !is_float_tree(g.type)) return r.seek(g.end_pos, g.part);
 
-  FloatTreeCheck tree(r, g, compression);
+  FloatTreeCheck tree(r, g, compression, metadata.saved_as_half);
   const TreeCounts n = tree.topology();
   if (r.position() != g.block_pos)
     throw r.error(g.part, fmt::format("its tree ends at byte {}, not where its data is said to "

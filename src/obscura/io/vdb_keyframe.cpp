@@ -1,6 +1,5 @@
 #include "obscura/io/vdb_keyframe.h"
 
-#include <fmt/format.h>
 #include <openvdb/io/File.h>
 #include <openvdb/openvdb.h>
 
@@ -12,13 +11,12 @@
 #include "obscura/io/vdb_keyframe_forms.h"
 #include "obscura/io/vdb_keyframe_layout.h"
 #include "obscura/io/vdb_keyframe_metadata.h"
-#include "obscura/io/vdb_stream_check.h"
+#include "obscura/io/vdb_open.h"
 
 namespace obscura {
 namespace {
 
 using vdb_format::CommonHeader;
-using vdb_format::ensure_openvdb_initialized;
 using vdb_format::GridSpec;
 using vdb_format::kConcentrationUnits;
 using vdb_format::kFormSpecies;
@@ -36,26 +34,9 @@ struct ReadResult {
 };
 
 ReadResult read_keyframe(const std::filesystem::path& path, bool keep_species) {
-  ensure_openvdb_initialized();
   const std::string file = path.string();
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec))
-    throw InputError(file, "",
-                     std::filesystem::exists(path, ec) ? "is not a regular file" : "no such file");
-
-  // Every length and offset against the file's size first: OpenVDB allocates
-  // what a truncated file's garbage says (vdb_stream_check.h).
-  vdb_format::check_vdb_stream(path);
-
-  openvdb::io::File f(file);
-  try {
-    // No delayed loading: readGrid then reads the voxel data at once, so a
-    // truncated file fails there, where the error can name the grid, and not
-    // later inside copyToDense's worker threads.
-    f.open(/*delayLoad=*/false);
-  } catch (const openvdb::Exception& e) {
-    throw InputError(file, "", fmt::format("not a readable OpenVDB file ({})", e.what()));
-  }
+  const std::unique_ptr<openvdb::io::File> opened = vdb_format::open_checked_vdb_file(path);
+  openvdb::io::File& f = *opened;
 
   ReadResult result;
   result.file_metadata = f.getMetadata();

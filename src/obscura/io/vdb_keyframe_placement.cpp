@@ -45,8 +45,8 @@ GridPlacement transform_to_placement(const openvdb::math::Transform& xf, const s
                                      const std::string& grid_name) {
   if (!xf.isLinear())
     throw InputError(file, grid_name,
-                     fmt::format("transform is a non-linear '{}' map; a cloud keyframe needs a "
-                                 "uniform scale, rotation and translation",
+                     fmt::format("transform is a non-linear '{}' map; obscura reads grids placed "
+                                 "by a uniform scale, rotation and translation only",
                                  xf.mapType()));
   const openvdb::math::Mat4d m = xf.baseMap()->getAffineMap()->getMat4();
   double norm[3];
@@ -61,8 +61,8 @@ GridPlacement transform_to_placement(const openvdb::math::Transform& xf, const s
   for (int r = 0; r < 3; ++r)
     if (std::abs(norm[r] - s) > kTransformTolerance * s)
       throw InputError(file, grid_name,
-                       fmt::format("transform has non-uniform voxel size ({}, {}, {}) m; cloud "
-                                   "keyframes need cubic voxels",
+                       fmt::format("transform has non-uniform voxel size ({}, {}, {}) m; obscura "
+                                   "reads cubic voxels only",
                                    norm[0], norm[1], norm[2]));
   GridPlacement p;
   p.voxel_size_m = s;
@@ -75,8 +75,8 @@ GridPlacement transform_to_placement(const openvdb::math::Transform& xf, const s
       for (int k = 0; k < 3; ++k) d += p.rotation.m[k][a] * p.rotation.m[k][b];
       if (std::abs(d - (a == b ? 1.0 : 0.0)) > kTransformTolerance)
         throw InputError(file, grid_name,
-                         "transform is sheared (its axes are not perpendicular); cloud keyframes "
-                         "need a uniform scale, rotation and translation");
+                         "transform is sheared (its axes are not perpendicular); obscura reads "
+                         "grids placed by a uniform scale, rotation and translation only");
     }
   const Mat3& R = p.rotation;
   const double det = R.m[0][0] * (R.m[1][1] * R.m[2][2] - R.m[1][2] * R.m[2][1]) -
@@ -84,8 +84,8 @@ GridPlacement transform_to_placement(const openvdb::math::Transform& xf, const s
                      R.m[0][2] * (R.m[1][0] * R.m[2][1] - R.m[1][1] * R.m[2][0]);
   if (det < 0.0)
     throw InputError(file, grid_name,
-                     "transform mirrors the grid (negative determinant); cloud keyframes need a "
-                     "proper rotation");
+                     "transform mirrors the grid (negative determinant); obscura reads "
+                     "proper rotations only");
   const Vec3 t(m(3, 0), m(3, 1), m(3, 2));
   p.origin_m = t - p.rotation * Vec3(0.5 * s, 0.5 * s, 0.5 * s);
   if (!is_finite(p.origin_m))

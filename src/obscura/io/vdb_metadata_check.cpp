@@ -1,6 +1,7 @@
 #include "obscura/io/vdb_metadata_check.h"
 
 #include <fmt/format.h>
+#include <openvdb/Grid.h>
 #include <openvdb/Metadata.h>
 #include <openvdb/io/DelayedLoadMetadata.h>
 
@@ -53,7 +54,8 @@ void check_delayed_load(VdbStreamReader& r, std::uint32_t value_bytes, const std
 
 }  // namespace
 
-void check_metadata_block(VdbStreamReader& r, const std::string& part) {
+MetadataFacts check_metadata_block(VdbStreamReader& r, const std::string& part) {
+  MetadataFacts facts;
   const auto count = r.read<std::int32_t>(part);
   if (count < 0) throw r.error(part, "a negative entry count: the file is corrupt");
   for (std::int32_t i = 0; i < count; ++i) {
@@ -77,8 +79,23 @@ void check_metadata_block(VdbStreamReader& r, const std::string& part) {
                                          "file is corrupt",
                                          type, value_bytes, expected));
     }
+    const bool is_bool = type == openvdb::BoolMetadata::staticTypeName();
+    const bool is_half_flag = name == openvdb::GridBase::META_SAVE_HALF_FLOAT;
+    if (is_half_flag && !is_bool)
+      throw r.error(entry, fmt::format("has type {}, where OpenVDB writes a bool: the file is "
+                                       "corrupt",
+                                       type));
+    if (is_bool) {
+      const auto value = r.read<std::uint8_t>(entry);
+      if (value > 1)
+        throw r.error(entry, fmt::format("a bool of value {}: the file is corrupt", value));
+      // A later entry of the same name replaces an earlier one (MetaMap::insertMeta).
+      if (is_half_flag) facts.saved_as_half = value == 1;
+      continue;
+    }
     r.skip(value_bytes, entry);
   }
+  return facts;
 }
 
 }  // namespace obscura::vdb_format

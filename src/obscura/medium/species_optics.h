@@ -4,7 +4,7 @@
 // (g/m³) of one or a few particle species plus temperature per voxel, and each
 // species' mass optical coefficients at the cloud's wavelengths.
 // expand_species turns it into the dense spectral VoxelGrid every medium
-// samples; the preparation phase (prep/voxelise) and the species keyframe
+// samples; the preparation phase (medium/voxelise) and the species keyframe
 // reader (io/vdb_keyframe) both go through it, so the two keyframe forms give
 // bit-identical grids.
 #include <cstddef>

@@ -17,11 +17,12 @@
 #include "obscura/io/stale_temporaries.h"
 #include "obscura/io/vdb_keyframe.h"
 #include "obscura/io/vtk_structured_points.h"
+#include "obscura/medium/voxelise.h"
 #include "obscura/optics/material.h"
+#include "obscura/optics/material_species_optics.h"
 #include "obscura/prep/dispersion/dispersion_grid.h"
 #include "obscura/prep/prepare_config.h"
 #include "obscura/prep/suggested_lifecycle.h"
-#include "obscura/prep/voxelise.h"
 
 namespace obscura {
 namespace {
@@ -29,33 +30,6 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
-}
-
-// The material's mass coefficients at the cloud's wavelengths. Where the
-// sources give only extinction (tabulated IR bands), the extinction is taken
-// as absorption with g = 0, and a warning says so.
-SpeciesOptics species_optics(const Material& material, const std::vector<double>& wavelengths_um,
-                             double humidity, int threads, std::vector<std::string>& warnings) {
-  SpeciesOptics s;
-  s.name = material.name;
-  s.wavelengths_um = wavelengths_um;
-  const std::vector<MaterialOptics> o = optics_at(material, wavelengths_um, humidity, threads);
-  for (const MaterialOptics& m : o) {
-    if (std::isnan(m.mass_scattering_m2_g) || std::isnan(m.asymmetry)) {
-      warnings.push_back(
-          fmt::format("{} at {} um: the sources give extinction only ({} m2/g); it is "
-                      "taken as absorption (albedo 0, g 0)",
-                      material.name, m.wavelength_um, m.mass_extinction_m2_g));
-      s.mass_absorption_m2_g.push_back(m.mass_extinction_m2_g);
-      s.mass_scattering_m2_g.push_back(0.0);
-      s.asymmetry.push_back(0.0);
-    } else {
-      s.mass_absorption_m2_g.push_back(m.mass_absorption_m2_g);
-      s.mass_scattering_m2_g.push_back(m.mass_scattering_m2_g);
-      s.asymmetry.push_back(std::clamp(m.asymmetry, -0.999, 0.999));
-    }
-  }
-  return s;
 }
 
 void write_manifest(const std::filesystem::path& path, const PrepareReport& r) {
@@ -223,8 +197,8 @@ PrepareReport prepare_cloud(const nlohmann::json& doc, const std::filesystem::pa
 
   const auto t1 = Clock::now();
   const SpeciesOptics optics =
-      species_optics(config.material, report.wavelengths_um, config.relative_humidity,
-                     options.threads, report.warnings);
+      material_species_optics(config.material, report.wavelengths_um, config.relative_humidity,
+                              options.threads, report.warnings);
   report.seconds_optics = since(t1);
   write_cloud(out_dir, concentrations, optics, config.output_form, config.file, options, report);
   report.manifest = out_dir / "cloud.json";

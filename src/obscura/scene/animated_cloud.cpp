@@ -1,22 +1,39 @@
 #include "obscura/scene/animated_cloud.h"
 
+#include <fmt/format.h>
+
 #include <cmath>
 #include <numbers>
 
+#include "obscura/io/json_reader.h"
 #include "obscura/io/vdb_keyframe.h"
 #include "obscura/medium/keyframe_interpolation.h"
 
 namespace obscura {
 
+AnimatedCloudKeys read_animated_cloud_keys(JsonObject& o, int index) {
+  AnimatedCloudKeys k;
+  k.activation_s = o.number_or("activation", 0.0);
+  k.deactivation_s = o.optional_number("deactivation");
+  k.name = o.string_or("name", fmt::format("cloud{}", index));
+  const long long cache = o.integer_or("cache_keyframes", 3);
+  if (cache < 2 || cache > 64) throw o.error("cache_keyframes", "must lie in [2, 64]");
+  k.cache_keyframes = static_cast<std::size_t>(cache);
+  return k;
+}
+
 AnimatedCloud::AnimatedCloud(std::string name, CloudManifest manifest, double activation_s,
-                             std::optional<double> deactivation_s, std::size_t cache_capacity)
+                             std::optional<double> deactivation_s, std::size_t cache_capacity,
+                             KeyframeCache::Loader loader)
     : name_(std::move(name)),
       manifest_(std::move(manifest)),
       activation_s_(activation_s),
       deactivation_s_(deactivation_s),
-      cache_(cache_capacity, [](const std::filesystem::path& file) {
-        return std::shared_ptr<const VoxelGrid>(read_cloud_keyframe(file).grid);
-      }) {}
+      cache_(
+          cache_capacity,
+          loader ? std::move(loader) : KeyframeCache::Loader([](const std::filesystem::path& file) {
+            return std::shared_ptr<const VoxelGrid>(read_cloud_keyframe(file).grid);
+          })) {}
 
 LifecycleState AnimatedCloud::state(double t) const {
   return manifest_.lifecycle.at(t, activation_s_, deactivation_s_);

@@ -14,11 +14,28 @@
 
 namespace obscura {
 
+// The keys of a scene's animated cloud, of either type ("animated",
+// "vdb-density" with a sequence; docs/formats.md): "name" (default
+// "cloud<index>"), "activation" (s, default 0), "deactivation" (s, optional:
+// never), "cache_keyframes" (2…64, default 3).
+struct AnimatedCloudKeys {
+  std::string name;
+  double activation_s = 0;
+  std::optional<double> deactivation_s;
+  std::size_t cache_keyframes = 3;
+};
+class JsonObject;
+// Reads them from the cloud's object; errors name the JSON path.
+AnimatedCloudKeys read_animated_cloud_keys(JsonObject& o, int index);
+
 class AnimatedCloud {
  public:
-  // Keyframes are read on demand through a cache of `cache_capacity` grids.
+  // Keyframes are read on demand through a cache of `cache_capacity` grids,
+  // by `loader` (default: read_cloud_keyframe; a vdb-density sequence reads
+  // another tool's files, scene/vdb_density_cloud.h).
   AnimatedCloud(std::string name, CloudManifest manifest, double activation_s,
-                std::optional<double> deactivation_s, std::size_t cache_capacity = 3);
+                std::optional<double> deactivation_s, std::size_t cache_capacity = 3,
+                KeyframeCache::Loader loader = {});
 
   const std::string& name() const { return name_; }
   const CloudManifest& manifest() const { return manifest_; }

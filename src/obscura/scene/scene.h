@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <string>
 #include <vector>
 
 #include "obscura/medium/medium.h"
@@ -44,7 +45,10 @@ struct Scene {
   // Optional render outputs (the scene file's "outputs"; --format adds to them).
   std::vector<OutputFormat> outputs;
   std::vector<std::filesystem::path> input_files;  // the scene file and the files it references
-  nlohmann::json source;                           // the scene as read, for provenance
+  // What loading found worth saying but not refusing (a material's band with
+  // extinction only, taken as absorption); render_sequence gives each once.
+  std::vector<std::string> warnings;
+  nlohmann::json source;  // the scene as read, for provenance
 };
 
 // Sets scene.medium to the clouds present at scene time t (s): the static

@@ -21,6 +21,7 @@
 #include "obscura/scene/heightfield.h"
 #include "obscura/scene/mesh_surface.h"
 #include "obscura/scene/scene.h"
+#include "obscura/scene/vdb_density_cloud.h"
 
 namespace obscura {
 
@@ -254,16 +255,14 @@ void parse_cloud(JsonObject o, const std::filesystem::path& base, Scene& scene, 
     const std::filesystem::path file = input_file(o, "manifest", base, "cloud manifest", scene);
     CloudManifest manifest = read_cloud_manifest(file);
     for (const auto& k : manifest.keyframes) inputs.push_back(k.file);
-    const double activation = o.number_or("activation", 0.0);
-    const std::optional<double> deactivation = o.optional_number("deactivation");
-    const std::string name = o.string_or("name", fmt::format("cloud{}", index));
-    const long long cache = o.integer_or("cache_keyframes", 3);
-    if (cache < 2 || cache > 64) throw o.error("cache_keyframes", "must lie in [2, 64]");
+    const AnimatedCloudKeys keys = read_animated_cloud_keys(o, index);
     o.finish();
-    scene.animated_clouds.push_back(std::make_shared<AnimatedCloud>(
-        name, std::move(manifest), activation, deactivation, static_cast<std::size_t>(cache)));
+    scene.animated_clouds.push_back(
+        std::make_shared<AnimatedCloud>(keys.name, std::move(manifest), keys.activation_s,
+                                        keys.deactivation_s, keys.cache_keyframes));
     return;
   }
+  if (type == "vdb-density") return parse_vdb_density_cloud(o, base, scene, index);
   if (type == "vdb") {
     const std::filesystem::path file = input_file(o, "file", base, "cloud keyframe", scene);
     CloudKeyframe kf = read_cloud_keyframe(file);
@@ -285,7 +284,8 @@ void parse_cloud(JsonObject o, const std::filesystem::path& base, Scene& scene, 
   } else {
     throw o.error(
         "type",
-        fmt::format("unknown cloud type '{}' (expected vdb, homogeneous or animated)", type));
+        fmt::format("unknown cloud type '{}' (expected vdb, vdb-density, homogeneous or animated)",
+                    type));
   }
   o.finish();
   scene.static_clouds.push_back(std::move(m));

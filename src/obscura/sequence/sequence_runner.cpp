@@ -193,6 +193,7 @@ class SequenceRun {
     throw_if_interrupted();
     const auto start = std::chrono::steady_clock::now();
     stage_scene(scene_, times_[f]);
+    warn_once(scene_.warnings);
     warn_once(bands_beyond_cloud_samples(scene_));
     const double staging_s = seconds_since(start);
     RenderedFrame frame = render_frame(scene_, f, times_.size(), options_.progress, processes);

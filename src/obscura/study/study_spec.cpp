@@ -126,8 +126,11 @@ std::filesystem::path relative_to(const std::filesystem::path& file, const std::
 }  // namespace
 
 StudySpec load_study(const std::filesystem::path& file) {
+  return parse_study(read_json_file(file.string()), file);
+}
+
+StudySpec parse_study(const nlohmann::json& doc, const std::filesystem::path& file) {
   const std::string name = file.string();
-  const nlohmann::json doc = read_json_file(name);
   JsonObject root(doc, name, "");
   StudySpec spec;
   spec.file = file;

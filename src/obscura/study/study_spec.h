@@ -48,6 +48,9 @@ struct StudySpec {
 // hold, an empty list of values, axes of different lengths with "zip", more
 // than 100 000 cases, a scene without a target or without the cloud.
 StudySpec load_study(const std::filesystem::path& file);
+// The same from an already-parsed study document: `file` names it in errors
+// and its folder is the base of the files it names.
+StudySpec parse_study(const nlohmann::json& doc, const std::filesystem::path& file);
 
 struct StudyCase {
   std::size_t index = 0;

@@ -1,8 +1,9 @@
 #pragma once
 // The preparation phase's last step (docs/preparation.md, the source paper's
-// "preparation phase"): particle mass concentration c (g/m³) and the mass
-// optical coefficients of the particles (m²/g) give the radiative properties
-// of every voxel,
+// "preparation phase"), also taken by a scene's vdb-density clouds as they
+// are read (scene/vdb_density_cloud.h): particle mass concentration c (g/m³)
+// and the mass optical coefficients of the particles (m²/g) give the
+// radiative properties of every voxel,
 //   σa(λ) = c · k_abs(λ),  σs(λ) = c · k_sca(λ)  (1/m),  g(λ) = g_particles(λ),
 // and the temperature is the frame's, or the ambient air's where the source
 // has none. The formula is expand_species's (medium/species_optics.h) for one

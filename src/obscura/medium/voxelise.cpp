@@ -1,4 +1,4 @@
-#include "obscura/prep/voxelise.h"
+#include "obscura/medium/voxelise.h"
 
 #include <fmt/format.h>
 
