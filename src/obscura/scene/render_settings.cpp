@@ -77,6 +77,12 @@ void parse_radiance_cache(JsonObject& o, RadianceCacheSettings& c) {
   c.sh_degree = saturate_int(o.integer_or("sh_degree", c.sh_degree));
   c.kernel_radius_nodes = saturate_int(o.integer_or("kernel_radius_nodes", c.kernel_radius_nodes));
   c.lateral_period_m = o.number_or("lateral_period_m", c.lateral_period_m);
+  const std::string estimate = o.string_or("estimate", c.track_length ? "tracks" : "collisions");
+  if (estimate != "tracks" && estimate != "collisions")
+    throw o.error("estimate",
+                  "must be \"tracks\" (every photon flight splatted along its length, where "
+                  "the lattice lies on a grid cloud) or \"collisions\" (at scattering events)");
+  c.track_length = estimate == "tracks";
   o.finish();
 }
 

@@ -82,6 +82,11 @@ struct RadianceCacheSettings {
   // Lattice and photons periodic in x and y with this period, m (0: off): a
   // laterally infinite, laterally homogeneous slab (validate slab).
   double lateral_period_m = 0.0;
+  // "estimate": "tracks" splats every photon flight along its length (the
+  // track-length estimate, where the lattice lies on a grid cloud and the
+  // kernel is one spacing; render/radiance_cache/flight_splat.h),
+  // "collisions" only the scattering events.
+  bool track_length = true;
 };
 
 struct RenderSettings {

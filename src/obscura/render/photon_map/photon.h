@@ -34,4 +34,22 @@ static_assert(sizeof(Photon) == 28, "Photon must stay 7 floats with no padding")
 static_assert(alignof(Photon) == 4);
 static_assert(offsetof(Photon, direction) == 12 && offsetof(Photon, power) == 24);
 
+// A photon's free flight (the radiance cache's track-length estimate,
+// render/radiance_cache/flight_splat.h): from `origin_m` along `direction` for
+// `length_m` metres, to its next real collision or out of the medium,
+// carrying `power`. Where a stored Photon samples σs L at a collision, the
+// flight's whole track does (the same expectation, ∫ σs along it).
+// Layout (32 bytes, no padding): origin[3], direction[3], length, power.
+struct PhotonFlight {
+  float origin_m[3];
+  float direction[3];
+  float length_m;
+  float power;  // W µm⁻¹ at the spectral node
+
+  Vec3 origin() const { return {origin_m[0], origin_m[1], origin_m[2]}; }
+  Vec3 dir() const { return {direction[0], direction[1], direction[2]}; }
+};
+
+static_assert(sizeof(PhotonFlight) == 32, "PhotonFlight must stay 8 floats with no padding");
+
 }  // namespace obscura

@@ -101,9 +101,24 @@ struct Launch {
 // scattering events (all of them with store_first_scatter, else from the
 // second on for sun and environment photons), Russian roulette by the
 // albedo at collisions and by the reflectance at surfaces.
+// What one chunk of photons keeps: stored photons, or their flights.
+struct ChunkRecord {
+  std::vector<Photon> photons;
+  std::vector<PhotonFlight> flights;
+};
+
+PhotonFlight flight_of(const Ray& ray, double length_m, double power) {
+  return {{static_cast<float>(ray.origin.x), static_cast<float>(ray.origin.y),
+           static_cast<float>(ray.origin.z)},
+          {static_cast<float>(ray.direction.x), static_cast<float>(ray.direction.y),
+           static_cast<float>(ray.direction.z)},
+          static_cast<float>(length_m),
+          static_cast<float>(power)};
+}
+
 void trace_photon(const Scene& scene, const SpectralNode& node, const SpectralLerp& lambda,
                   const Launch& l, const PhotonTracingSettings& settings, Rng& rng,
-                  MediumPoint& scratch, std::vector<Photon>& stored) {
+                  MediumPoint& scratch, ChunkRecord& record) {
   Ray ray = l.ray;
   bool scattered = l.scattered;
   for (int bounce = 0; bounce < settings.max_scatterings; ++bounce) {
@@ -113,13 +128,26 @@ void trace_photon(const Scene& scene, const SpectralNode& node, const SpectralLe
     const auto t = sample_free_flight(*scene.medium, ray,
                                       on_surface ? hit.t : std::numeric_limits<double>::infinity(),
                                       lambda, rng, scratch);
+    const bool counts = scattered || l.store_first || settings.store_first_scatter;
+    if (settings.flights && counts) {
+      // To the collision, else to the surface or out of the medium's box.
+      double end = t ? *t : on_surface ? hit.t : 0.0;
+      if (!t) {
+        double t0 = 0.0, t1 = std::numeric_limits<double>::infinity();
+        if (scene.medium->bounds().intersect(ray, t0, t1))
+          end = on_surface ? std::min(end, t1) : t1;
+        else
+          end = 0.0;
+      }
+      if (end > 0.0) record.flights.push_back(flight_of(ray, end, l.power));
+    }
     if (t) {
       const double sigma_a = lambda(scratch.sigma_a.data()),
                    sigma_s = lambda(scratch.sigma_s.data());
       if (rng.uniform() * (sigma_a + sigma_s) >= sigma_s) return;  // absorbed
       const Vec3 x = ray.at(*t);
-      if (scattered || l.store_first || settings.store_first_scatter)
-        stored.push_back(
+      if (counts && !settings.flights)
+        record.photons.push_back(
             Photon{{static_cast<float>(x.x), static_cast<float>(x.y), static_cast<float>(x.z)},
                    {static_cast<float>(ray.direction.x), static_cast<float>(ray.direction.y),
                     static_cast<float>(ray.direction.z)},
@@ -282,14 +310,15 @@ class PhotonSources {
 };
 
 // Every process's chunks (c ≡ rank mod ranks) to every process.
-void share_chunks(const ProcessGroup& processes, std::vector<std::vector<Photon>>& stored,
+void share_chunks(const ProcessGroup& processes, std::vector<ChunkRecord>& stored,
                   std::vector<std::array<double, 3>>& launched) {
   const auto rank = static_cast<std::size_t>(processes.rank()),
              ranks = static_cast<std::size_t>(processes.size());
   ByteWriter out;
   for (std::size_t c = rank; c < stored.size(); c += ranks) {
     out.put(launched[c]);
-    out.put_vector(stored[c]);
+    out.put_vector(stored[c].photons);
+    out.put_vector(stored[c].flights);
   }
   const std::vector<std::string> all = processes.all_gather(out.take());
   for (std::size_t r = 0; r < ranks; ++r) {
@@ -297,7 +326,8 @@ void share_chunks(const ProcessGroup& processes, std::vector<std::vector<Photon>
     ByteReader in(all[r]);
     for (std::size_t c = r; c < stored.size(); c += ranks) {
       launched[c] = in.get<std::array<double, 3>>();
-      stored[c] = in.get_vector<Photon>();
+      stored[c].photons = in.get_vector<Photon>();
+      stored[c].flights = in.get_vector<PhotonFlight>();
     }
     OBSCURA_CHECK(in.done());
   }
@@ -334,7 +364,7 @@ TracedPhotons trace_photons(const Scene& scene, const SpectralNode& node, std::u
   // processes), gathered in chunk order, so the result does not depend on the
   // thread or process count.
   const std::size_t chunks = static_cast<std::size_t>((n + kChunk - 1) / kChunk);
-  std::vector<std::vector<Photon>> stored(chunks);
+  std::vector<ChunkRecord> stored(chunks);
   std::vector<std::array<double, 3>> launched(chunks, {0, 0, 0});
   const ProcessGroup& processes = *settings.processes;
   const auto rank = static_cast<std::size_t>(processes.rank()),
@@ -367,11 +397,16 @@ TracedPhotons trace_photons(const Scene& scene, const SpectralNode& node, std::u
     }
   });
   if (ranks > 1) share_chunks(processes, stored, launched);
-  std::size_t total_stored = 0;
-  for (const auto& s : stored) total_stored += s.size();
-  out.photons.reserve(total_stored);
+  std::size_t total_photons = 0, total_flights = 0;
+  for (const auto& s : stored) {
+    total_photons += s.photons.size();
+    total_flights += s.flights.size();
+  }
+  out.photons.reserve(total_photons);
+  out.flights.reserve(total_flights);
   for (std::size_t c = 0; c < chunks; ++c) {
-    out.photons.insert(out.photons.end(), stored[c].begin(), stored[c].end());
+    out.photons.insert(out.photons.end(), stored[c].photons.begin(), stored[c].photons.end());
+    out.flights.insert(out.flights.end(), stored[c].flights.begin(), stored[c].flights.end());
     out.launched.sun_w_um += launched[c][kSun];
     out.launched.environment_w_um += launched[c][kEnvironment];
     out.launched.emission_w_um += launched[c][kEmission];

@@ -64,6 +64,10 @@ struct PhotonTracingSettings {
   // process receives every chunk, in chunk order, so the photons are the same
   // bits for any number of processes. Called by every process together.
   const ProcessGroup* processes = &single_process();
+  // Keep the flights that end in the collisions that would be stored (and
+  // those of such photons that leave the medium or meet a surface), instead
+  // of the stored photons: TracedPhotons::flights, photons left empty.
+  bool flights = false;
 };
 
 // Spectral powers (W µm⁻¹) per source kind.
@@ -74,6 +78,7 @@ struct PhotonSourcePowers {
 
 struct TracedPhotons {
   std::vector<Photon> photons;              // stored at scattering events
+  std::vector<PhotonFlight> flights;        // with settings.flights: the flights instead
   PhotonSourcePowers launched;              // Σ of the launched photons' powers per source
   PhotonSourcePowers estimated;             // the powers used to share the photons out
   long long launched_count[3] = {0, 0, 0};  // sun, environment, emission

@@ -14,6 +14,7 @@
 #include "obscura/core/memory_limit.h"
 #include "obscura/core/parallel.h"
 #include "obscura/render/photon_map/photon_tracing.h"
+#include "obscura/render/radiance_cache/flight_splat.h"
 
 namespace obscura {
 namespace {
@@ -46,17 +47,37 @@ class OpticalDepth final : public MarchVisitor {
   double* tau_;
 };
 
-// ∫ (tent(t/r)/r) tent(t − k) dt: the splatting kernel against the lattice's
-// linear interpolation, one axis, at node offset k (|k| ≤ r).
-double kernel_overlap(int r, int k) {
-  constexpr int kSteps = 4096;
+// ∫ (tent(t/r)/r) tent(t − k) dt over t in [lo, hi]: the splatting kernel
+// against the lattice's linear interpolation, one axis, at node offset k
+// (|k| ≤ r), the medium present only on [lo, hi] (node units, relative to
+// the kernel's node). Simpson's rule between the integrand's breakpoints,
+// where it is a quadratic: exact.
+double kernel_overlap(int r, int k, double lo, double hi) {
+  const double a = std::max<double>(-r, lo), b = std::min<double>(r, hi);
+  if (!(b > a)) return 0.0;
+  auto f = [&](double t) {
+    return std::max(0.0, 1.0 - std::abs(t) / r) / r * std::max(0.0, 1.0 - std::abs(t - k));
+  };
+  std::vector<double> breaks = {
+      a, b, 0.0, static_cast<double>(k - 1), static_cast<double>(k), static_cast<double>(k + 1)};
+  std::sort(breaks.begin(), breaks.end());
   double sum = 0.0;
-  const double a = -r, b = r, dt = (b - a) / kSteps;
-  for (int i = 0; i < kSteps; ++i) {
-    const double t = a + (i + 0.5) * dt;
-    sum += std::max(0.0, 1.0 - std::abs(t) / r) / r * std::max(0.0, 1.0 - std::abs(t - k));
+  for (std::size_t i = 0; i + 1 < breaks.size(); ++i) {
+    const double x0 = std::max(a, breaks[i]), x1 = std::min(b, breaks[i + 1]);
+    if (x1 > x0) sum += (x1 - x0) / 6.0 * (f(x0) + 4.0 * f(0.5 * (x0 + x1)) + f(x1));
   }
-  return sum * dt;
+  return sum;
+}
+
+// Per node index along one axis of `nodes` nodes, the 2r + 1 overlaps of
+// kernel_overlap with the medium on [lo, hi] (node units).
+std::vector<double> axis_overlaps(int r, int nodes, double lo, double hi) {
+  std::vector<double> out(static_cast<std::size_t>(nodes) * (2 * r + 1));
+  for (int i = 0; i < nodes; ++i)
+    for (int k = -r; k <= r; ++k)
+      out[static_cast<std::size_t>(i) * (2 * r + 1) + (k + r)] =
+          kernel_overlap(r, k, lo - i, hi - i);
+  return out;
 }
 
 }  // namespace
@@ -193,21 +214,31 @@ std::vector<float> RadianceCache::kernel_scattering(const Scene& scene) const {
   const bool aligned = frame && frame->trilinear && !lattice_.periodic() &&
                        std::abs(frame->placement.voxel_size_m - lattice_.spacing_m()) <=
                            1e-12 * lattice_.spacing_m();
+  // Inside the grid's box the medium is the trilinear interpolation of the
+  // nodes' values, a rim node repeating its edge voxel (the grid's clamped
+  // reconstruction), and zero outside it: the overlaps are clipped to the
+  // box, [½, n + ½] in node units.
   std::vector<float> at_nodes;
+  std::array<std::vector<double>, 3> overlap;
   if (aligned) {
     at_nodes.assign(slots * static_cast<std::size_t>(ns), 0.0f);
+    const GridDims& d = frame->dims;
     parallel_for(lattice_.block_count(), scene.settings.threads, [&](std::size_t block) {
       MediumPoint point;
       for (std::size_t slot = block * NodeLattice::kBlockNodes;
            slot < (block + 1) * NodeLattice::kBlockNodes; ++slot) {
         if (!lattice_.slot_inside(slot)) continue;
-        medium.coefficients_at(lattice_.slot_position(slot), point);
+        const std::array<int, 3> n = lattice_.slot_node(slot);
+        const Vec3 voxel(std::clamp(n[0] - 1, 0, d.nx - 1), std::clamp(n[1] - 1, 0, d.ny - 1),
+                         std::clamp(n[2] - 1, 0, d.nz - 1));
+        medium.coefficients_at(frame->placement.index_to_world(voxel), point);
         for (int k = 0; k < ns; ++k) at_nodes[slot * ns + k] = static_cast<float>(point.sigma_s[k]);
       }
     });
+    const std::array<int, 3> cells = {d.nx, d.ny, d.nz};
+    for (int a = 0; a < 3; ++a)
+      overlap[a] = axis_overlaps(r, lattice_.dims()[a], 0.5, cells[a] + 0.5);
   }
-  std::vector<double> overlap(2 * r + 1);
-  for (int k = -r; k <= r; ++k) overlap[k + r] = kernel_overlap(r, k);
   // Otherwise (steps at a box's faces, clouds on other grids) by two-point
   // Gauss–Legendre per lattice interval and axis over the kernel's support:
   // exact for σs trilinear within each interval, and converging as the
@@ -219,43 +250,47 @@ std::vector<float> RadianceCache::kernel_scattering(const Scene& scene) const {
       gauss_u.push_back(u);
       gauss_w.push_back(0.5 * std::max(0.0, 1.0 - std::abs(u) / r) / r);
     }
-  for_blocks_shared(
-      *processes_, lattice_.block_count(), scene.settings.threads, out,
-      static_cast<std::size_t>(ns) * NodeLattice::kBlockNodes, [&](std::size_t block) {
-        MediumPoint point;
-        std::vector<double> sum(static_cast<std::size_t>(ns));
-        for (std::size_t slot = block * NodeLattice::kBlockNodes;
-             slot < (block + 1) * NodeLattice::kBlockNodes; ++slot) {
-          if (!lattice_.slot_inside(slot)) continue;
-          const Vec3 node = lattice_.to_lattice(lattice_.slot_position(slot));
-          const int ni = static_cast<int>(std::lround(node.x)),
-                    nj = static_cast<int>(std::lround(node.y)),
-                    nk = static_cast<int>(std::lround(node.z));
-          std::fill(sum.begin(), sum.end(), 0.0);
-          if (aligned) {
-            for (int dk = -r; dk <= r; ++dk)
-              for (int dj = -r; dj <= r; ++dj)
-                for (int di = -r; di <= r; ++di) {
-                  const std::size_t m = lattice_.slot_of(ni + di, nj + dj, nk + dk);
-                  if (m == NodeLattice::kNoSlot) continue;
-                  const double w = overlap[di + r] * overlap[dj + r] * overlap[dk + r];
-                  for (int k = 0; k < ns; ++k) sum[k] += w * at_nodes[m * ns + k];
-                }
-          } else {
-            const Vec3 p0 = lattice_.slot_position(slot);
-            const double h = lattice_.spacing_m();
-            for (std::size_t c = 0; c < gauss_u.size(); ++c)
-              for (std::size_t b = 0; b < gauss_u.size(); ++b)
-                for (std::size_t a = 0; a < gauss_u.size(); ++a) {
-                  const Vec3 offset(gauss_u[a] * h, gauss_u[b] * h, gauss_u[c] * h);
-                  medium.coefficients_at(p0 + lattice_.rotation() * offset, point);
-                  const double w = gauss_w[a] * gauss_w[b] * gauss_w[c];
-                  for (int k = 0; k < ns; ++k) sum[k] += w * point.sigma_s[k];
-                }
-          }
-          for (int k = 0; k < ns; ++k) out[slot * ns + k] = static_cast<float>(sum[k]);
-        }
-      });
+  for_blocks_shared(*processes_, lattice_.block_count(), scene.settings.threads, out,
+                    static_cast<std::size_t>(ns) * NodeLattice::kBlockNodes,
+                    [&](std::size_t block) {
+                      MediumPoint point;
+                      std::vector<double> sum(static_cast<std::size_t>(ns));
+                      for (std::size_t slot = block * NodeLattice::kBlockNodes;
+                           slot < (block + 1) * NodeLattice::kBlockNodes; ++slot) {
+                        if (!lattice_.slot_inside(slot)) continue;
+                        const Vec3 node = lattice_.to_lattice(lattice_.slot_position(slot));
+                        const int ni = static_cast<int>(std::lround(node.x)),
+                                  nj = static_cast<int>(std::lround(node.y)),
+                                  nk = static_cast<int>(std::lround(node.z));
+                        std::fill(sum.begin(), sum.end(), 0.0);
+                        if (aligned) {
+                          for (int dk = -r; dk <= r; ++dk)
+                            for (int dj = -r; dj <= r; ++dj)
+                              for (int di = -r; di <= r; ++di) {
+                                const std::size_t m = lattice_.slot_of(ni + di, nj + dj, nk + dk);
+                                if (m == NodeLattice::kNoSlot) continue;
+                                const std::size_t span = 2 * r + 1;
+                                const double w = overlap[0][ni * span + (di + r)] *
+                                                 overlap[1][nj * span + (dj + r)] *
+                                                 overlap[2][nk * span + (dk + r)];
+                                for (int k = 0; k < ns; ++k) sum[k] += w * at_nodes[m * ns + k];
+                              }
+                        } else {
+                          const Vec3 p0 = lattice_.slot_position(slot);
+                          const double h = lattice_.spacing_m();
+                          for (std::size_t c = 0; c < gauss_u.size(); ++c)
+                            for (std::size_t b = 0; b < gauss_u.size(); ++b)
+                              for (std::size_t a = 0; a < gauss_u.size(); ++a) {
+                                const Vec3 offset(gauss_u[a] * h, gauss_u[b] * h, gauss_u[c] * h);
+                                medium.coefficients_at(p0 + lattice_.rotation() * offset, point);
+                                const double w = gauss_w[a] * gauss_w[b] * gauss_w[c];
+                                for (int k = 0; k < ns; ++k) sum[k] += w * point.sigma_s[k];
+                              }
+                        }
+                        for (int k = 0; k < ns; ++k)
+                          out[slot * ns + k] = static_cast<float>(sum[k]);
+                      }
+                    });
   return out;
 }
 
@@ -270,15 +305,20 @@ void RadianceCache::splat(const Scene& scene, const SpectralNode& node, int inde
   tracing.threads = scene.settings.threads;
   tracing.processes = processes_;
   tracing.lateral_period_m = lattice_.periodic() ? settings.lateral_period_m : 0.0;
+  // The flights' tracks where the records hold the medium and the kernel is
+  // the lattice's own hat (flight_splat.h), else the collisions.
+  tracing.flights = splats_flights(settings);
   // One block of 2^40 photon streams per spectral node, above the pixels'.
   const std::uint64_t base = (static_cast<std::uint64_t>(index) + 1) << 40;
   TracedPhotons traced = trace_photons(scene, node, base, tracing);
-  photons_stored_ += traced.photons.size();
+  photons_stored_ += tracing.flights ? traced.flights.size() : traced.photons.size();
   photon_seconds += seconds_since(t0);
 
   t0 = std::chrono::steady_clock::now();
   const std::size_t slots = lattice_.slot_count();
   std::vector<double> sum(slots * sh_count_, 0.0);
+  if (tracing.flights)
+    splat_flights(volume_, index, traced.flights, sh_degree_, scene.settings.threads, sum);
   const int r = settings.kernel_radius_nodes;
   const double h = lattice_.spacing_m();
   const double volume = std::pow(r * h, 3);  // the kernel's normalisation (r h)³

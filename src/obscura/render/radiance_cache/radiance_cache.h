@@ -64,6 +64,12 @@ class RadianceCache {
   std::vector<float> kernel_scattering(const Scene& scene) const;
   void splat(const Scene& scene, const SpectralNode& node, int index,
              const std::vector<float>& kernel_sigma_s);
+  // Whether the splats take the photons' flights (the track-length
+  // estimate, flight_splat.h) rather than their collisions: where the
+  // records hold the medium and the kernel is one spacing wide.
+  bool splats_flights(const RadianceCacheSettings& settings) const {
+    return settings.track_length && volume_.has_medium() && settings.kernel_radius_nodes == 1;
+  }
 
   NodeLattice lattice_;
   const ProcessGroup* processes_;

@@ -1,0 +1,210 @@
+#include "obscura/render/radiance_cache/flight_splat.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <utility>
+
+#include "obscura/core/check.h"
+#include "obscura/core/parallel.h"
+#include "obscura/medium/lattice_walker.h"
+#include "obscura/render/radiance_cache/spherical_harmonics.h"
+
+namespace obscura {
+namespace {
+
+// Node layers (lattice z) per task: a cell on a slab's edge is integrated by
+// both slabs, each keeping its own corners.
+constexpr int kSlabLayers = 4;
+
+// Three-point Gauss–Legendre on [0, 1].
+constexpr double kGaussT[3] = {0.11270166537925831, 0.5, 0.88729833462074169};
+constexpr double kGaussW[3] = {5.0 / 18.0, 8.0 / 18.0, 5.0 / 18.0};
+
+// A flight in lattice coordinates, clipped to where the records hold medium.
+struct LatticeFlight {
+  Vec3 origin, direction;  // node units; per metre along the flight
+  double t0 = 0.0, t1 = 0.0;
+};
+
+bool to_lattice(const LatticeVolume& volume, const PhotonFlight& f, LatticeFlight& out) {
+  const NodeLattice& lattice = volume.lattice();
+  out.origin = lattice.to_lattice(f.origin());
+  out.direction = lattice.to_lattice_direction(f.dir());
+  out.t0 = 0.0;
+  out.t1 = f.length_m;
+  return volume.domain().intersect(Ray{out.origin, out.direction}, out.t0, out.t1) &&
+         out.t1 > out.t0;
+}
+
+// Clips the flight to lattice z in [z_lo, z_hi]; false if nothing is left.
+bool clip_to_layers(LatticeFlight& f, double z_lo, double z_hi) {
+  const double o = f.origin.z, d = f.direction.z;
+  if (d == 0.0) return o >= z_lo && o <= z_hi && f.t1 > f.t0;
+  double a = (z_lo - o) / d, b = (z_hi - o) / d;
+  if (a > b) std::swap(a, b);
+  f.t0 = std::max(f.t0, a);
+  f.t1 = std::min(f.t1, b);
+  return f.t1 > f.t0;
+}
+
+// The corner slots of a cell (kNoSlot where the lattice holds no block),
+// through the first slots of the 8 blocks at offsets (0|1)³ from the
+// cell's, kept while the walk stays in one block.
+class CellCorners {
+ public:
+  explicit CellCorners(const NodeLattice& lattice) : lattice_(lattice) {}
+
+  void operator()(const std::array<int, 3>& cell, std::array<std::size_t, 8>& slot) {
+    static_assert(NodeLattice::kBlock == 8);  // blocks and offsets by shifts and masks
+    constexpr int b = NodeLattice::kBlock;
+    const std::array<int, 3> block = {cell[0] >> 3, cell[1] >> 3, cell[2] >> 3};
+    if (block != block_) {
+      block_ = block;
+      const std::array<int, 3>& n = lattice_.block_dims();
+      for (int c = 0; c < 8; ++c) {
+        const int bx = block[0] + (c & 1), by = block[1] + (c >> 1 & 1),
+                  bz = block[2] + (c >> 2 & 1);
+        first_[c] = bx < n[0] && by < n[1] && bz < n[2] ? lattice_.block_first_slot(bx, by, bz)
+                                                        : NodeLattice::kNoSlot;
+      }
+    }
+    const int lx = cell[0] & 7, ly = cell[1] & 7, lz = cell[2] & 7;
+    if (lx < 7 && ly < 7 && lz < 7) {  // all corners in the cell's own block
+      const std::size_t s = first_[0] + static_cast<std::size_t>(lx + b * (ly + b * lz));
+      slot = {s,         s + 1,         s + b,         s + b + 1,
+              s + b * b, s + b * b + 1, s + b * b + b, s + b * b + b + 1};
+      if (first_[0] == NodeLattice::kNoSlot) slot.fill(NodeLattice::kNoSlot);
+      return;
+    }
+    for (int c = 0; c < 8; ++c) {
+      const int x = lx + (c & 1), y = ly + (c >> 1 & 1), z = lz + (c >> 2 & 1);
+      const std::size_t first = first_[(x >> 3) | (y >> 3) << 1 | (z >> 3) << 2];
+      slot[c] = first == NodeLattice::kNoSlot
+                    ? NodeLattice::kNoSlot
+                    : first + static_cast<std::size_t>((x & 7) + b * ((y & 7) + b * (z & 7)));
+    }
+  }
+
+ private:
+  const NodeLattice& lattice_;
+  std::array<int, 3> block_{-1, -1, -1};
+  std::array<std::size_t, 8> first_{};
+};
+
+}  // namespace
+
+void splat_flights(const LatticeVolume& volume, int node, const std::vector<PhotonFlight>& flights,
+                   int sh_degree, int threads, std::vector<double>& sum) {
+  OBSCURA_CHECK(volume.has_medium());
+  const NodeLattice& lattice = volume.lattice();
+  const int count = sh_coefficient_count(sh_degree);
+  OBSCURA_CHECK(sum.size() == lattice.slot_count() * static_cast<std::size_t>(count));
+  const std::array<int, 3>& dims = lattice.dims();
+  const int slabs = (dims[2] + kSlabLayers - 1) / kSlabLayers;
+  const double h = lattice.spacing_m();
+  const double inv_volume = 1.0 / (h * h * h);  // the tent kernel of one spacing, per m³
+  const float* records = volume.records(node);
+  const std::size_t stride = static_cast<std::size_t>(volume.stride());
+
+  // Which flights reach which slab: the node layers of the cells it crosses.
+  std::vector<std::vector<std::uint32_t>> reach(static_cast<std::size_t>(slabs));
+  OBSCURA_CHECK(flights.size() < std::numeric_limits<std::uint32_t>::max());
+  for (std::size_t i = 0; i < flights.size(); ++i) {
+    LatticeFlight f;
+    if (!to_lattice(volume, flights[i], f)) continue;
+    const double za = f.origin.z + f.t0 * f.direction.z, zb = f.origin.z + f.t1 * f.direction.z;
+    const int lo = std::clamp(static_cast<int>(std::floor(std::min(za, zb))), 0, dims[2] - 2);
+    const int hi = std::clamp(static_cast<int>(std::floor(std::max(za, zb))), 0, dims[2] - 2) + 1;
+    for (int s = lo / kSlabLayers; s <= std::min(hi / kSlabLayers, slabs - 1); ++s)
+      reach[static_cast<std::size_t>(s)].push_back(static_cast<std::uint32_t>(i));
+  }
+
+  parallel_for(static_cast<std::size_t>(slabs), threads, [&](std::size_t s) {
+    const int z0 = static_cast<int>(s) * kSlabLayers, z1 = std::min(z0 + kSlabLayers, dims[2]);
+    std::array<double, kMaxShCoefficients> y;
+    std::array<std::size_t, 8> slot;
+    std::array<int, 3> cell;
+    CellCorners cell_corners(lattice);
+    for (const std::uint32_t i : reach[s]) {
+      const PhotonFlight& flight = flights[i];
+      LatticeFlight f;
+      to_lattice(volume, flight, f);
+      // The part of it in the cells whose corners reach node layers z0 … z1 − 1,
+      // z from z0 − 1 to z1 (the walker must start inside its range).
+      const int cz0 = std::max(z0 - 1, 0), cz1 = std::min(z1 - 1, dims[2] - 2);
+      if (!clip_to_layers(f, cz0, cz1 + 1)) continue;
+      spherical_harmonics(flight.dir(), y);
+      LatticeWalker walker(f.origin, f.direction, f.t0, f.t1, 1.0, {0, 0, cz0},
+                           {dims[0] - 2, dims[1] - 2, cz1});
+      // The corners of the last cell and their ∫ hat σs dt so far: a node on
+      // the face into the next cell carries its sum on, so each node takes
+      // the harmonics once per run of cells rather than once per cell.
+      std::array<std::size_t, 8> held_slot;
+      held_slot.fill(NodeLattice::kNoSlot);
+      std::array<double, 8> held{};
+      std::array<int, 3> held_cell{-2, -2, -2};
+      const double scale = flight.power * inv_volume;
+      auto flush = [&](int c) {
+        const int z = held_cell[2] + (c >> 2 & 1);
+        if (held_slot[c] == NodeLattice::kNoSlot || z < z0 || z >= z1 || held[c] == 0.0) return;
+        double* acc = sum.data() + held_slot[c] * static_cast<std::size_t>(count);
+        const double wc = scale * held[c];
+        for (int l = 0; l < count; ++l) acc[l] += wc * y[l];
+      };
+      double ta, tb;
+      while (walker.next(cell, ta, tb)) {
+        if (!(tb > ta) || cell[2] + 1 < z0 || cell[2] >= z1) continue;
+        cell_corners(cell, slot);
+        // σs at the corners (zero in blocks the lattice does not hold), then
+        // ∫ hat_c σs dt over the cell's piece for each corner c.
+        std::array<double, 8> corner_sigma_s;
+        for (int c = 0; c < 8; ++c)
+          corner_sigma_s[c] =
+              slot[c] == NodeLattice::kNoSlot ? 0.0 : records[slot[c] * stride + record::kSigmaS];
+        std::array<double, 8> weight{};
+        for (int q = 0; q < 3; ++q) {
+          const double t = ta + (tb - ta) * kGaussT[q];
+          double fx[3];
+          for (int a = 0; a < 3; ++a)
+            fx[a] = std::clamp(f.origin[a] + t * f.direction[a] - cell[a], 0.0, 1.0);
+          std::array<double, 8> w;
+          double sigma_s = 0.0;
+          for (int c = 0; c < 8; ++c) {
+            w[c] = ((c & 1) ? fx[0] : 1 - fx[0]) * ((c & 2) ? fx[1] : 1 - fx[1]) *
+                   ((c & 4) ? fx[2] : 1 - fx[2]);
+            sigma_s += w[c] * corner_sigma_s[c];
+          }
+          const double gw = kGaussW[q] * (tb - ta) * sigma_s;
+          for (int c = 0; c < 8; ++c) weight[c] += gw * w[c];
+        }
+        // One step along axis k: the held corners on the shared face move to
+        // the opposite side of the new cell; the others are done.
+        int axis = -1, steps = 0;
+        for (int a = 0; a < 3; ++a)
+          if (cell[a] != held_cell[a]) {
+            axis = a;
+            steps += std::abs(cell[a] - held_cell[a]);
+          }
+        if (steps == 1) {
+          const int side = cell[axis] > held_cell[axis] ? 1 : 0;
+          for (int c = 0; c < 8; ++c)
+            if ((c >> axis & 1) == side)
+              weight[c ^ (1 << axis)] += held[c];
+            else
+              flush(c);
+        } else {
+          for (int c = 0; c < 8; ++c) flush(c);
+        }
+        held = weight;
+        held_slot = slot;
+        held_cell = cell;
+      }
+      for (int c = 0; c < 8; ++c) flush(c);
+    }
+  });
+}
+
+}  // namespace obscura
