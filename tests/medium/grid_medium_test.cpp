@@ -80,7 +80,7 @@ TEST(GridMedium, OpticalDepthMatchesBruteForceIntegration) {
   }
 }
 
-TEST(GridMedium, MajorantBoundsExtinctionEverywhere) {
+TEST(GridMedium, MajorantAndMinorantBoundExtinctionEverywhere) {
   const auto grid = testing::random_grid({13, 9, 11}, 2, 3);
   const GridMedium medium(grid, 4);
   const MajorantGrid& maj = medium.majorants();
@@ -93,7 +93,8 @@ TEST(GridMedium, MajorantBoundsExtinctionEverywhere) {
               by = static_cast<int>(std::floor(u.y + 1)) / 4,
               bz = static_cast<int>(std::floor(u.z + 1)) / 4;
     for (int s = 0; s < 2; ++s) {
-      EXPECT_LE(p.sigma_a[s] + p.sigma_s[s], maj.majorant(bx, by, bz, s));
+      EXPECT_LE(p.sigma_a[s] + p.sigma_s[s], maj.majorant(bx, by, bz, s) * (1.0 + 1e-12));
+      EXPECT_GE(p.sigma_a[s] + p.sigma_s[s], maj.minorant(bx, by, bz, s) * (1.0 - 1e-12));
       EXPECT_LE(maj.majorant(bx, by, bz, s), maj.max_majorant(bx, by, bz));
     }
   }

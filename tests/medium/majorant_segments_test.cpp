@@ -26,8 +26,14 @@ void expect_bounds_and_cover(const Medium& m, std::uint64_t seed) {
       for (int i = 0; i < 5; ++i) {
         const double t = s.t_begin + (s.t_end - s.t_begin) * rng.uniform();
         m.coefficients_at(ray.at(t), p);
-        for (int k = 0; k < s.spectral_count; ++k)
-          EXPECT_LE(p.sigma_a[k] + p.sigma_s[k], s.sigma_majorant[k]);
+        // To rounding: a block of one value is bounded by that value itself.
+        for (int k = 0; k < s.spectral_count; ++k) {
+          EXPECT_LE(p.sigma_a[k] + p.sigma_s[k], s.sigma_majorant[k] * (1.0 + 1e-12));
+          if (s.sigma_minorant) {
+            EXPECT_GE(p.sigma_a[k] + p.sigma_s[k], s.sigma_minorant[k] * (1.0 - 1e-12));
+            EXPECT_LE(s.sigma_minorant[k], s.sigma_majorant[k]);
+          }
+        }
         ++checked;
       }
       return true;
@@ -51,6 +57,19 @@ TEST(MajorantSegments, GridBoundsAndCovers) {
   expect_bounds_and_cover(
       GridMedium(testing::random_grid({9, 7, 8}, 2, 4, rotation_from_euler_deg({15, 25, 35})), 3),
       1);
+  // No empty voxels: the minorants are positive and bound σt from below.
+  auto full = testing::random_grid({9, 7, 8}, 2, 6);
+  for (int s = 0; s < 2; ++s)
+    for (std::size_t v = 0; v < full->dims().count(); ++v) full->sigma_a(s)[v] += 0.5f;
+  const GridMedium medium(full, 3);
+  expect_bounds_and_cover(medium, 2);
+  int positive = 0;
+  medium.trace_majorants(Ray{medium.bounds().center() - Vec3(0, 0, 20), Vec3(0, 0, 1)}, 0, 1e9,
+                         [&](const MajorantSegment& s) {
+                           positive += s.sigma_minorant && s.sigma_minorant[0] > 0.5 * 0.999;
+                           return true;
+                         });
+  EXPECT_GT(positive, 1);
 }
 
 TEST(MajorantSegments, HomogeneousIsExact) {
@@ -59,6 +78,7 @@ TEST(MajorantSegments, HomogeneousIsExact) {
   int pieces = 0;
   m.trace_majorants(Ray{{-1, 0.5, 0.5}, {1, 0, 0}}, 0, 1e9, [&](const MajorantSegment& s) {
     EXPECT_DOUBLE_EQ(s.sigma_majorant[0], 0.5);
+    EXPECT_TRUE(s.sigma_minorant && s.sigma_minorant[0] == s.sigma_majorant[0]);
     EXPECT_DOUBLE_EQ(s.t_begin, 1.0);
     EXPECT_DOUBLE_EQ(s.t_end, 2.0);
     return ++pieces, true;

@@ -101,6 +101,62 @@ TEST(RatioTracking, EstimatesTransmittanceWithoutBias) {
   }
 }
 
+// Residual ratio tracking's control (the pieces' minorants): where the
+// medium is constant along a piece the estimate is the exact transmittance
+// every time, a box's and a constant grid's alike; where it varies (a grid
+// without empty voxels, minorants > 0) it stays unbiased.
+TEST(RatioTracking, ConstantMediaGiveTheExactTransmittanceEveryTime) {
+  const HomogeneousMedium box(BBox3({0, 0, 0}, {2, 2, 2}), {0.5}, {0.2}, {1.8}, {0.5}, 0.0);
+  auto grid =
+      std::make_shared<VoxelGrid>(GridDims{8, 8, 8}, GridPlacement{}, std::vector<double>{0.5});
+  std::fill_n(grid->sigma_a(0), grid->dims().count(), 0.2f);
+  std::fill_n(grid->sigma_s(0), grid->dims().count(), 1.8f);
+  const GridMedium constant_grid(grid, 4);
+  const SpectralLerp lambda{0, 0, 0.0};
+  MediumPoint scratch;
+  Rng rng(3, 0);
+  for (const Medium* m :
+       {static_cast<const Medium*>(&box), static_cast<const Medium*>(&constant_grid)})
+    for (int i = 0; i < 200; ++i) {
+      const Vec3 d = normalize(Vec3(rng.uniform() - 0.5, rng.uniform() - 0.5, rng.uniform() - 0.5));
+      const Ray ray{m->bounds().center() - d * 0.3 * rng.uniform(), d};
+      const double exact = std::exp(-m->optical_depth(ray, 0.0, 1e9)[0]);
+      EXPECT_NEAR(estimate_transmittance(*m, ray, 1e9, lambda, rng, scratch), exact,
+                  1e-9 * exact + 1e-15);
+    }
+}
+
+TEST(RatioTracking, ResidualTrackingIsUnbiasedWhereTheMediumVaries) {
+  auto full = testing::random_grid({8, 8, 8}, 1, 22, rotation_from_euler_deg({10, 20, 30}));
+  for (std::size_t v = 0; v < full->dims().count(); ++v) {  // thinner, and nowhere empty
+    full->sigma_a(0)[v] = 0.3f * full->sigma_a(0)[v] + 0.05f;
+    full->sigma_s(0)[v] *= 0.3f;
+  }
+  const GridMedium grid(full, 2);
+  const BBox3 b = grid.bounds();
+  const SpectralLerp lambda{0, 0, 0.0};
+  MediumPoint scratch;
+  Rng dirs(6, 0);
+  for (int r = 0; r < 4; ++r) {
+    const Vec3 d =
+        normalize(Vec3(dirs.uniform() - 0.5, dirs.uniform() - 0.5, dirs.uniform() - 0.5));
+    const Ray ray{b.center() - d * 10.0, d};
+    const double exact = std::exp(-grid.optical_depth(ray, 0.0, 20.0)[0]);
+    Rng rng(8, r);
+    double sum = 0, sum2 = 0;
+    const int n = 50000;
+    for (int i = 0; i < n; ++i) {
+      const double t = estimate_transmittance(grid, ray, 20.0, lambda, rng, scratch);
+      sum += t;
+      sum2 += t * t;
+    }
+    const double mean = sum / n;
+    const double stderr_mean = std::sqrt(std::max(0.0, sum2 / n - mean * mean) / (n - 1));
+    EXPECT_NEAR(mean, exact, 4.0 * stderr_mean + 1e-12) << "ray " << r << " exact " << exact;
+    EXPECT_LT(stderr_mean, 0.01 * exact) << "ray " << r << ": the test lacks power";
+  }
+}
+
 TEST(SpectralLerp, InterpolatesAndClamps) {
   const std::vector<double> w = {3.0, 4.0, 6.0};
   const double v[] = {1.0, 3.0, 7.0};

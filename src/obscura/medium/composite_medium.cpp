@@ -140,7 +140,7 @@ void CompositeMedium::trace_majorants(const Ray& ray, double t_min, double t_max
   const int ns = static_cast<int>(wavelengths_um_.size());
   struct Piece {
     double t0, t1;
-    std::size_t values;  // offset in `pool`
+    std::size_t values;  // offset in `pool`: the majorants, then the minorants
   };
   std::vector<double> pool, breaks;
   std::vector<std::vector<Piece>> pieces(children_.size());
@@ -148,6 +148,10 @@ void CompositeMedium::trace_majorants(const Ray& ray, double t_min, double t_max
     children_[c]->trace_majorants(ray, t_min, t_max, [&](const MajorantSegment& m) {
       pieces[c].push_back({m.t_begin, m.t_end, pool.size()});
       pool.insert(pool.end(), m.sigma_majorant, m.sigma_majorant + ns);
+      if (m.sigma_minorant)
+        pool.insert(pool.end(), m.sigma_minorant, m.sigma_minorant + ns);
+      else
+        pool.insert(pool.end(), static_cast<std::size_t>(ns), 0.0);
       breaks.push_back(m.t_begin);
       breaks.push_back(m.t_end);
       return true;
@@ -155,20 +159,25 @@ void CompositeMedium::trace_majorants(const Ray& ray, double t_min, double t_max
   std::sort(breaks.begin(), breaks.end());
   breaks.erase(std::unique(breaks.begin(), breaks.end()), breaks.end());
   std::vector<std::size_t> cursor(children_.size(), 0);
-  std::vector<double> sum(ns);
+  std::vector<double> sum(ns), least(ns);
   for (std::size_t b = 0; b + 1 < breaks.size(); ++b) {
     const double u0 = breaks[b], u1 = breaks[b + 1];
     std::fill(sum.begin(), sum.end(), 0.0);
+    std::fill(least.begin(), least.end(), 0.0);
     bool any = false;
     for (std::size_t c = 0; c < children_.size(); ++c) {
       std::size_t& i = cursor[c];
       while (i < pieces[c].size() && pieces[c][i].t1 <= u0) ++i;
       if (i < pieces[c].size() && pieces[c][i].t0 <= u0 && pieces[c][i].t1 >= u1) {
-        for (int k = 0; k < ns; ++k) sum[k] += pool[pieces[c][i].values + k];
+        const std::size_t v = pieces[c][i].values;
+        for (int k = 0; k < ns; ++k) {
+          sum[k] += pool[v + k];
+          least[k] += pool[v + ns + k];
+        }
         any = true;
       }
     }
-    if (any && !visit(MajorantSegment{u0, u1, sum.data(), ns})) return;
+    if (any && !visit(MajorantSegment{u0, u1, sum.data(), ns, least.data()})) return;
   }
 }
 

@@ -356,6 +356,34 @@ void GridMedium::march_cells(const Ray& ray, double t_min, double t_max,
   }
 }
 
+namespace {
+
+// τ per medium sample by Simpson's rule on each cell's three points.
+class SimpsonOpticalDepth final : public MarchVisitor {
+ public:
+  explicit SimpsonOpticalDepth(double* tau) : tau_(tau) {}
+  bool visit(const MarchCell& cell) override {
+    const double h = cell.t_end - cell.t_begin;
+    for (int k = 0; k < cell.spectral_count; ++k) {
+      const double a = cell.point[0][0].sigma_a[k] + cell.point[0][0].sigma_s[k],
+                   m = cell.point[1][0].sigma_a[k] + cell.point[1][0].sigma_s[k],
+                   b = cell.point[2][0].sigma_a[k] + cell.point[2][0].sigma_s[k];
+      tau_[k] += h / 6.0 * (a + 4.0 * m + b);
+    }
+    return true;
+  }
+
+ private:
+  double* tau_;
+};
+
+}  // namespace
+
+void GridMedium::add_optical_depth(const Ray& ray, double t_min, double t_max, double* tau) const {
+  SimpsonOpticalDepth depth(tau);
+  march_cells(ray, t_min, t_max, {}, depth);
+}
+
 bool GridMedium::may_be_nonzero(const BBox3& world_box) const {
   if (!Medium::may_be_nonzero(world_box)) return false;
   // The box's corners in cell space (w = index + 1), a conservative range of cells.
@@ -395,13 +423,16 @@ void GridMedium::trace_majorants(const Ray& ray, double t_min, double t_max,
   const auto& bd = majorants_.block_dims();
   LatticeWalker blocks(o, dir, t_min, t_max, majorants_.block_size(), {0, 0, 0},
                        {bd[0] - 1, bd[1] - 1, bd[2] - 1});
-  std::vector<double> values(ns);
+  std::vector<double> values(ns), least(ns);
   std::array<int, 3> b;
   double t0, t1;
   while (blocks.next(b, t0, t1)) {
     if (!(t1 > t0) || majorants_.max_majorant(b[0], b[1], b[2]) <= 0.0f) continue;
-    for (int s = 0; s < ns; ++s) values[s] = majorants_.majorant(b[0], b[1], b[2], s);
-    if (!visit(MajorantSegment{t0, t1, values.data(), ns})) return;
+    for (int s = 0; s < ns; ++s) {
+      values[s] = majorants_.majorant(b[0], b[1], b[2], s);
+      least[s] = majorants_.minorant(b[0], b[1], b[2], s);
+    }
+    if (!visit(MajorantSegment{t0, t1, values.data(), ns, least.data()})) return;
   }
 }
 

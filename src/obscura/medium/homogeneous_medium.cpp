@@ -84,7 +84,9 @@ void HomogeneousMedium::trace_segments(const Ray& ray, double t_min, double t_ma
 void HomogeneousMedium::trace_majorants(const Ray& ray, double t_min, double t_max,
                                         const MajorantVisitor& visit) const {
   if (!box_.intersect(ray, t_min, t_max) || !(t_max > t_min)) return;
-  visit(MajorantSegment{t_min, t_max, sigma_t_.data(), static_cast<int>(sigma_t_.size())});
+  // Constant: σt bounds itself from both sides.
+  visit(MajorantSegment{t_min, t_max, sigma_t_.data(), static_cast<int>(sigma_t_.size()),
+                        sigma_t_.data()});
 }
 
 }  // namespace obscura

@@ -1,6 +1,7 @@
 #include "obscura/medium/majorant_grid.h"
 
 #include <algorithm>
+#include <limits>
 
 #include "obscura/core/error.h"
 
@@ -13,7 +14,8 @@ MajorantGrid::MajorantGrid(const VoxelGrid& grid, int block_size)
   for (int a = 0; a < 3; ++a) block_dims_[a] = (n[a] + 1 + block_size - 1) / block_size;
   const std::size_t blocks =
       static_cast<std::size_t>(block_dims_[0]) * block_dims_[1] * block_dims_[2];
-  values_.assign(blocks * spectral_count_, 0.0f);
+  values_.assign(blocks * spectral_count_, 0.0);
+  minorants_.assign(blocks * spectral_count_, 0.0);
   max_.assign(blocks, 0.0f);
   // Voxels influencing block b along an axis: cells [bB, bB+B−1] have corners
   // (cell − 1) and cell, i.e. voxels [bB − 1, bB + B − 1], clamped to the grid.
@@ -32,17 +34,27 @@ MajorantGrid::MajorantGrid(const VoxelGrid& grid, int block_size)
         for (int s = 0; s < spectral_count_; ++s) {
           const float* sa = grid.sigma_a(s);
           const float* ss = grid.sigma_s(s);
-          float m = 0.0f;
+          // In double, as the field is evaluated (coefficients_at).
+          double m = 0.0, least = std::numeric_limits<double>::infinity();
           for (int k = z0; k <= z1; ++k)
             for (int j = y0; j <= y1; ++j)
               for (int i = x0; i <= x1; ++i) {
                 const std::size_t v = grid.index(i, j, k);
-                m = std::max(m, sa[v] + ss[v]);
+                const double sigma_t = static_cast<double>(sa[v]) + ss[v];
+                m = std::max(m, sigma_t);
+                least = std::min(least, sigma_t);
               }
-          // Float sums round; widen slightly so the bound holds for the exact (double) field.
-          m *= 1.0f + 1e-6f;
+          // Widen slightly so that the bounds hold for the trilinear field with
+          // its rounding. A block of one value is left as it is: its field is
+          // that value to rounding, and equal bounds make residual ratio
+          // tracking exact there.
+          if (least < m) {
+            m *= 1.0 + 1e-9;
+            least *= 1.0 - 1e-9;
+          }
           values_[b * spectral_count_ + s] = m;
-          max_[b] = std::max(max_[b], m);
+          minorants_[b * spectral_count_ + s] = least;
+          max_[b] = std::max(max_[b], static_cast<float>(m * (1.0 + 1e-6)));
         }
       }
 }

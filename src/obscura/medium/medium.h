@@ -47,12 +47,15 @@ struct MediumSegment {
 
 // A piece [t_begin, t_end] of a ray over which σt ≤ sigma_majorant[k] for every
 // spectral sample k (1/m): the bound that delta and ratio tracking sample
-// against. Outside the pieces a medium reports, σt = 0.
+// against. Outside the pieces a medium reports, σt = 0. Where a medium knows
+// one, sigma_minorant[k] ≤ σt over the piece too (the control of residual
+// ratio tracking); null means 0.
 struct MajorantSegment {
   double t_begin = 0.0;
   double t_end = 0.0;
   const double* sigma_majorant = nullptr;  // spectral_count values, 1/m
   int spectral_count = 0;
+  const double* sigma_minorant = nullptr;  // spectral_count values, 1/m, or null
 };
 
 // A regular grid a medium is defined on (where it has one): what a cache of
@@ -110,8 +113,9 @@ class Medium {
   // spectral sample, integrated exactly from the segments' cubics.
   std::vector<double> optical_depth(const Ray& ray, double t_min, double t_max) const;
   // The same added into tau[0 … wavelengths_um().size()) (no allocation: for
-  // callers that accumulate τ step by step along a ray).
-  void add_optical_depth(const Ray& ray, double t_min, double t_max, double* tau) const;
+  // callers that accumulate τ step by step along a ray). The default
+  // integrates trace_segments' cubics; a grid overrides it.
+  virtual void add_optical_depth(const Ray& ray, double t_min, double t_max, double* tau) const;
 };
 
 }  // namespace obscura

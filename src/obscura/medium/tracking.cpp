@@ -58,24 +58,43 @@ std::optional<double> sample_free_flight(const Medium& medium, const Ray& ray, d
 
 double estimate_transmittance(const Medium& medium, const Ray& ray, double t_max,
                               const SpectralLerp& lambda, Rng& rng, MediumPoint& scratch) {
-  // Ratio tracking (Novák et al. 2014) with Russian roulette: below
-  // kRouletteBelow the estimate survives each further collision with
+  // Residual ratio tracking (Novák, Selle & Jarosz 2014, "Residual ratio
+  // tracking for estimating attenuation in participating media", §4): with a
+  // piece's minorant σc as the control, T = e^{−σc Δt} E[Π (1 − (σt(x_i) −
+  // σc)/σ̄r)] over tentative collisions x_i at the residual rate σ̄r = σ̄ − σc.
+  // Where the medium is constant over a piece (σc = σ̄) the estimate is
+  // exact; without a minorant it is plain ratio tracking. Russian roulette:
+  // below kRouletteBelow the estimate survives each further collision with
   // probability ½ at twice the weight, which keeps it unbiased and stops
   // shadow rays through opaque clouds after a few collisions instead of
   // hundreds.
   constexpr double kRouletteBelow = 0.05;
   double transmittance = 1.0;
-  walk_tentative_collisions(medium, ray, t_max, lambda, rng, scratch,
-                            [&](double, double sigma_t, double majorant) {
-                              transmittance *= std::max(0.0, 1.0 - sigma_t / majorant);
-                              if (transmittance > 0.0 && transmittance < kRouletteBelow) {
-                                if (rng.uniform() >= 0.5)
-                                  transmittance = 0.0;
-                                else
-                                  transmittance *= 2.0;
-                              }
-                              return transmittance != 0.0;
-                            });
+  medium.trace_majorants(ray, 0.0, t_max, [&](const MajorantSegment& piece) {
+    const double majorant = lambda(piece.sigma_majorant);
+    if (!(majorant > 0.0)) return true;
+    const double control =
+        piece.sigma_minorant ? std::clamp(lambda(piece.sigma_minorant), 0.0, majorant) : 0.0;
+    transmittance *= std::exp(-control * (piece.t_end - piece.t_begin));
+    const double residual = majorant - control;
+    // Within rounding of a constant piece: the control is the whole of σt.
+    if (!(residual > 1e-9 * majorant)) return transmittance != 0.0;
+    double t = piece.t_begin;
+    while (true) {
+      t += exponential_step(rng, residual);
+      if (t >= piece.t_end) return true;  // no collision in this piece: on to the next
+      medium.coefficients_at(ray.at(t), scratch);
+      const double sigma_t = lambda(scratch.sigma_a.data()) + lambda(scratch.sigma_s.data());
+      transmittance *= std::max(0.0, 1.0 - (sigma_t - control) / residual);
+      if (transmittance > 0.0 && transmittance < kRouletteBelow) {
+        if (rng.uniform() >= 0.5)
+          transmittance = 0.0;
+        else
+          transmittance *= 2.0;
+      }
+      if (transmittance == 0.0) return false;
+    }
+  });
   return transmittance;
 }
 

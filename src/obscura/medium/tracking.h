@@ -37,8 +37,10 @@ std::optional<double> sample_free_flight(const Medium& medium, const Ray& ray, d
                                          const SpectralLerp& lambda, Rng& rng,
                                          MediumPoint& scratch);
 
-// Unbiased estimate of the transmittance e^{−τ(0, t_max)} by ratio tracking,
-// with Russian roulette once the estimate falls below 0.05.
+// Unbiased estimate of the transmittance e^{−τ(0, t_max)} by residual ratio
+// tracking (the majorant pieces' minorants as the control; exact where the
+// medium is constant over a piece), with Russian roulette once the estimate
+// falls below 0.05.
 double estimate_transmittance(const Medium& medium, const Ray& ray, double t_max,
                               const SpectralLerp& lambda, Rng& rng, MediumPoint& scratch);
 

@@ -26,27 +26,6 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-// The optical depth along a ray per medium sample, by Simpson's rule on each
-// cell's three points: exact, as trilinear σt is a cubic inside a cell.
-class OpticalDepth final : public MarchVisitor {
- public:
-  explicit OpticalDepth(double* tau) : tau_(tau) {}
-  bool visit(const MarchCell& cell) override {
-    const double h = cell.t_end - cell.t_begin;
-    for (int c = 0; c < cell.component_count; ++c)
-      for (int k = 0; k < cell.spectral_count; ++k) {
-        double sum = 0;
-        for (int p = 0; p < 3; ++p)
-          sum += (p == 1 ? 4.0 : 1.0) * (cell.point[p][c].sigma_a[k] + cell.point[p][c].sigma_s[k]);
-        tau_[k] += h / 6.0 * sum;
-      }
-    return true;
-  }
-
- private:
-  double* tau_;
-};
-
 // ∫ (tent(t/r)/r) tent(t − k) dt over t in [lo, hi]: the splatting kernel
 // against the lattice's linear interpolation, one axis, at node offset k
 // (|k| ≤ r), the medium present only on [lo, hi] (node units, relative to
@@ -167,25 +146,26 @@ void RadianceCache::compute_sun(const Scene& scene, const std::vector<SpectralNo
   // then on or just under it (the ground beneath a cloud's lowest nodes),
   // and its values serve the cells above.
   const double near_m = std::sqrt(3.0) * lattice_.spacing_m();
-  for_blocks_shared(
-      *processes_, lattice_.block_count(), scene.settings.threads, sun,
-      per_slot * NodeLattice::kBlockNodes, [&](std::size_t block) {
-        std::vector<double> tau(static_cast<std::size_t>(spectral_count_));
-        for (std::size_t slot = block * NodeLattice::kBlockNodes;
-             slot < (block + 1) * NodeLattice::kBlockNodes; ++slot) {
-          if (!lattice_.slot_inside(slot)) continue;
-          const Ray ray{lattice_.slot_position(slot), to_sun};
-          SurfaceHit hit;
-          const bool shaded = intersect_surfaces(scene.surfaces, ray, near_m,
-                                                 std::numeric_limits<double>::infinity(), hit);
-          std::fill(tau.begin(), tau.end(), 0.0);
-          OpticalDepth depth(tau.data());
-          scene.medium->march_cells(ray, 0.0, std::numeric_limits<double>::infinity(), {}, depth);
-          float* out = sun.data() + slot * per_slot;
-          for (int k = 0; k < spectral_count_; ++k) out[k] = static_cast<float>(tau[k]);
-          out[spectral_count_] = shaded ? 0.0f : 1.0f;
-        }
-      });
+  for_blocks_shared(*processes_, lattice_.block_count(), scene.settings.threads, sun,
+                    per_slot * NodeLattice::kBlockNodes, [&](std::size_t block) {
+                      std::vector<double> tau(static_cast<std::size_t>(spectral_count_));
+                      for (std::size_t slot = block * NodeLattice::kBlockNodes;
+                           slot < (block + 1) * NodeLattice::kBlockNodes; ++slot) {
+                        if (!lattice_.slot_inside(slot)) continue;
+                        const Ray ray{lattice_.slot_position(slot), to_sun};
+                        SurfaceHit hit;
+                        const bool shaded =
+                            intersect_surfaces(scene.surfaces, ray, near_m,
+                                               std::numeric_limits<double>::infinity(), hit);
+                        std::fill(tau.begin(), tau.end(), 0.0);
+                        scene.medium->add_optical_depth(
+                            ray, 0.0, std::numeric_limits<double>::infinity(), tau.data());
+                        float* out = sun.data() + slot * per_slot;
+                        for (int k = 0; k < spectral_count_; ++k)
+                          out[k] = static_cast<float>(tau[k]);
+                        out[spectral_count_] = shaded ? 0.0f : 1.0f;
+                      }
+                    });
   // Into every spectral node's records, τ_sun at its wavelength.
   parallel_for(lattice_.block_count(), scene.settings.threads, [&](std::size_t block) {
     std::vector<double> tau(static_cast<std::size_t>(spectral_count_));
