@@ -74,11 +74,14 @@ struct SegmentIntegrand {
   }
 };
 
-// Adaptive Simpson on [a, b] for all slots at once; bisects until every slot's
-// two-level estimates agree within 15 ε |I| (the Richardson factor of Simpson's
-// rule), then adds the Richardson correction.
+// Adaptive Simpson on [a, b] for all slots at once (Lyness 1969); bisects
+// until every slot's two-level estimates agree within 15 tol (the Richardson
+// factor of Simpson's rule), each half then allowed half the tolerance, and
+// adds the Richardson correction. `tol` is absolute per slot: a relative test
+// on each piece alone would chase pieces whose contribution is negligible
+// (a nearly empty corner of a cell) to the deepest level.
 void adaptive_simpson(SegmentIntegrand& f, double a, double b, const double* fa, const double* fm,
-                      const double* fb, const double* whole, double eps, int depth,
+                      const double* fb, const double* whole, const double* tol, int depth,
                       double* result) {
   const int n = f.count;
   const double m = 0.5 * (a + b);
@@ -91,7 +94,7 @@ void adaptive_simpson(SegmentIntegrand& f, double a, double b, const double* fa,
     left[j] = hl * (fa[j] + 4.0 * flm[j] + fm[j]);
     right[j] = hr * (fm[j] + 4.0 * frm[j] + fb[j]);
     const double diff = left[j] + right[j] - whole[j];
-    if (std::abs(diff) > 15.0 * eps * std::abs(left[j] + right[j])) converged = false;
+    if (std::abs(diff) > 15.0 * tol[j]) converged = false;
   }
   if (converged || depth >= kMaxDepth) {
     for (int j = 0; j < n; ++j) {
@@ -100,8 +103,10 @@ void adaptive_simpson(SegmentIntegrand& f, double a, double b, const double* fa,
     }
     return;
   }
-  adaptive_simpson(f, a, m, fa, flm.data(), fm, left.data(), eps, depth + 1, result);
-  adaptive_simpson(f, m, b, fm, frm.data(), fb, right.data(), eps, depth + 1, result);
+  NodeArray half;
+  for (int j = 0; j < n; ++j) half[j] = 0.5 * tol[j];
+  adaptive_simpson(f, a, m, fa, flm.data(), fm, left.data(), half.data(), depth + 1, result);
+  adaptive_simpson(f, m, b, fm, frm.data(), fb, right.data(), half.data(), depth + 1, result);
 }
 
 // A component's cubic at a spectral node: linear in wavelength between the
@@ -183,14 +188,21 @@ void integrate_emission_absorption(const Medium* medium, const Ray& ray, double 
       integrand(0.5 * h, fm.data());
       integrand(0.75 * h, fq3.data());
       integrand.split(h, fh.data(), src.data(), att.data());
+      // The tolerance of the segment, absolute: the relative tolerance of the
+      // larger of its emission and the radiance gathered so far (which the
+      // segment's emission adds to, seen through the transmittance so far).
+      NodeArray tol;
       bool converged = true;
       for (int j = 0; j < n; ++j) {
         whole[j] = h / 6.0 * (f0[j] + 4.0 * fm[j] + fh[j]);
         left[j] = h / 12.0 * (f0[j] + 4.0 * fq1[j] + fm[j]);
         right[j] = h / 12.0 * (fm[j] + 4.0 * fq3[j] + fh[j]);
+        const int i = active[j];
+        const double so_far =
+            transmittance[i] > 0.0 ? std::abs(radiance[i]) / transmittance[i] : 0.0;
+        tol[j] = relative_tolerance * std::max(std::abs(left[j] + right[j]), so_far);
         const double diff = left[j] + right[j] - whole[j];
-        if (std::abs(diff) > 15.0 * relative_tolerance * std::abs(left[j] + right[j]))
-          converged = false;
+        if (std::abs(diff) > 15.0 * tol[j]) converged = false;
       }
       if (converged) {
         for (int j = 0; j < n; ++j) {
@@ -198,10 +210,12 @@ void integrate_emission_absorption(const Medium* medium, const Ray& ray, double 
           result[j] = two + (two - whole[j]) / 15.0;
         }
       } else {
+        NodeArray half;
+        for (int j = 0; j < n; ++j) half[j] = 0.5 * tol[j];
         adaptive_simpson(integrand, 0.0, 0.5 * h, f0.data(), fq1.data(), fm.data(), left.data(),
-                         relative_tolerance, 1, result.data());
+                         half.data(), 1, result.data());
         adaptive_simpson(integrand, 0.5 * h, h, fm.data(), fq3.data(), fh.data(), right.data(),
-                         relative_tolerance, 1, result.data());
+                         half.data(), 1, result.data());
       }
       for (int j = 0; j < n; ++j) {
         const int i = active[j];

@@ -1,0 +1,121 @@
+#!/usr/bin/env python3
+"""A demo frame through a fast method against a converged path-traced reference.
+
+Prepares the demo's cloud once, renders the frame at --time with the path
+tracer at --reference-spp (kept in --reference-file when given, reused when
+its size, time and spp match) and with --method (default the radiance
+cache), then prints per sensor and band: the target region's mean radiance
+(the screening metrics' target_radiance) of both and their relative
+difference, and the relative RMS difference after a 4x4 box blur over pixels
+whose blurred reference is above 1 % of its largest (the radiance-cache
+issue's measures), with the times. Nothing is asserted (docs/performance.md,
+docs/validation.md).
+
+    PYTHONPATH=build/release/python /usr/bin/python3 bench/demo_accuracy.py \
+        [--size 64x32] [--time 8] [--reference-spp 1024] [--reference-file F]
+        [--method radiance-cache] [--photons N] [--spp 1] [--sh-degree D]
+        [--estimate tracks|collisions]
+"""
+import argparse
+import json
+import pathlib
+import tempfile
+import time
+
+import numpy as np
+
+import obscura
+
+
+def blur4(image):
+    h, w = image.shape[0] // 4 * 4, image.shape[1] // 4 * 4
+    return image[:h, :w].reshape(h // 4, 4, w // 4, 4).mean(axis=(1, 3))
+
+
+def target_radiance(scene, result, at):
+    rows = obscura.screening_metrics(scene, result, time=at)["frames"]
+    return {(r["sensor"], r["band"]): r["target_radiance"] for r in rows}
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--size", default="64x32")
+    parser.add_argument("--time", type=float, default=8.0)
+    parser.add_argument("--reference-spp", type=int, default=1024)
+    parser.add_argument("--reference-file")
+    parser.add_argument("--method", default="radiance-cache")
+    parser.add_argument("--photons", type=int, default=0)
+    parser.add_argument("--spp", type=int, default=1)
+    parser.add_argument("--sh-degree", type=int, default=0)
+    parser.add_argument("--estimate", default="")
+    parser.add_argument("--threads", type=int, default=0)
+    parser.add_argument("--root", default=".", help="the repository root")
+    args = parser.parse_args()
+    width, height = (int(v) for v in args.size.split("x"))
+    root = pathlib.Path(args.root)
+
+    with tempfile.TemporaryDirectory(prefix="obscura_accuracy_") as tmp:
+        tmp = pathlib.Path(tmp)
+        obscura.prepare(str(root / "examples/smoke-screen/prepare.json"), str(tmp / "cloud"))
+        (tmp / "tank.obj").write_bytes((root / "examples/tank/tank.obj").read_bytes())
+        doc = json.loads((root / "examples/demo/scene.json").read_text())
+        for sensor in doc["sensors"]:
+            sensor["width"], sensor["height"] = width, height
+        render = {k: v for k, v in doc["render"].items() if k not in ("photon_map", "method")}
+
+        def scene_for(method, spp, extra):
+            d = dict(doc, render=dict(render, method=method, samples_per_pixel=spp, **extra))
+            return obscura.Scene.from_dict(d, path=str(tmp / "scene.json"))
+
+        key = f"{width}x{height} t={args.time} spp={args.reference_spp}"
+        reference, reference_targets, reference_s = None, None, 0.0
+        if args.reference_file and pathlib.Path(args.reference_file).exists():
+            kept = np.load(args.reference_file, allow_pickle=True)
+            if str(kept["key"]) == key:
+                reference = kept["radiance"].item()
+                reference_targets = kept["targets"].item()
+                reference_s = float(kept["seconds"])
+        if reference is None:
+            scene = scene_for("path-tracer", args.reference_spp, {})
+            start = time.perf_counter()
+            result = obscura.render(scene, time=args.time, threads=args.threads)
+            reference_s = time.perf_counter() - start
+            reference = {(s, b): np.array(result[s].bands[b].radiance, dtype=np.float64)
+                         for s in result for b in result[s].bands}
+            reference_targets = target_radiance(scene, result, args.time)
+            if args.reference_file:
+                np.savez(args.reference_file, key=key, radiance=reference,
+                         targets=reference_targets, seconds=reference_s)
+
+        extra = {}
+        if args.method == "radiance-cache":
+            cache = {}
+            if args.photons > 0:
+                cache["photons"] = args.photons
+            if args.sh_degree > 0:
+                cache["sh_degree"] = args.sh_degree
+            if args.estimate:
+                cache["estimate"] = args.estimate
+            extra = {"radiance_cache": cache}
+        scene = scene_for(args.method, args.spp, extra)
+        start = time.perf_counter()
+        result = obscura.render(scene, time=args.time, threads=args.threads)
+        seconds = time.perf_counter() - start
+        targets = target_radiance(scene, result, args.time)
+
+        print(f"demo frame at t = {args.time} s, {width}x{height} px; reference: path tracer, "
+              f"{args.reference_spp} spp, {reference_s:.1f} s; {args.method}: {seconds:.2f} s")
+        print(f"{'sensor':12} {'band':10} {'target ref':>11} {'target':>11} {'diff':>8} "
+              f"{'RMSE (4x4)':>11}")
+        for (sensor, band), ref in reference.items():
+            got = np.array(result[sensor].bands[band].radiance, dtype=np.float64)
+            a, b = blur4(ref), blur4(got)
+            keep = a > 0.01 * a.max()
+            rmse = np.sqrt(np.mean(((b - a)[keep] / a[keep]) ** 2))
+            t_ref, t_got = reference_targets[(sensor, band)], targets[(sensor, band)]
+            diff = t_got / t_ref - 1.0 if t_ref else float("nan")
+            print(f"{sensor:12} {band:10} {t_ref:11.5g} {t_got:11.5g} {diff:8.4f} {rmse:11.4f}")
+
+
+if __name__ == "__main__":
+    main()
