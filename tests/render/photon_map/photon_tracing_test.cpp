@@ -11,10 +11,13 @@
 #include <cstring>
 #include <numbers>
 
+#include "obscura/core/memory_limit.h"
 #include "obscura/core/planck.h"
 #include "obscura/medium/gaussian_puff.h"
 #include "obscura/medium/grid_medium.h"
 #include "obscura/medium/homogeneous_medium.h"
+#include "support/input_error.h"
+#include "support/thread_process_group.h"
 
 namespace obscura {
 namespace {
@@ -167,6 +170,47 @@ TEST(PhotonTracing, ABlackGroundUnderTheCloudChangesNoPhoton) {
   ASSERT_EQ(without.photons.size(), with.photons.size());
   EXPECT_EQ(0, std::memcmp(without.photons.data(), with.photons.data(),
                            with.photons.size() * sizeof(Photon)));
+}
+
+}  // namespace
+}  // namespace obscura
+
+namespace obscura {
+namespace {
+
+// Photons stored past the memory limit stop the tracing with an error naming
+// the setting, on every process alike (two ranks as threads here: neither
+// waits for the other in a collective), and the limit restored lets the
+// same tracing through.
+TEST(PhotonTracing, StoringPastTheMemoryLimitIsAnErrorOnEveryProcess) {
+  Scene scene = cube_scene(0.01, 20.0, 300.0);  // many scatterings per photon
+  scene.sun.enabled = true;
+  const SpectralNodes nodes = nodes_at(10.0, scene.medium->wavelengths_um());
+  PhotonTracingSettings s;
+  s.photons = 20000;
+  s.threads = 2;
+  s.memory_field = "render/radiance_cache/photons";
+  set_memory_limit(256 * 1024, MemoryLimitSource::kCommandLine);
+  const InputError e =
+      testing::expect_input_error([&] { trace_photons(scene, nodes.nodes()[0], 0, s); });
+  EXPECT_EQ(e.field(), "render/radiance_cache/photons");
+  EXPECT_NE(std::string(e.detail()).find("outgrew the memory limit"), std::string::npos)
+      << e.what();
+  std::vector<std::string> messages(2);
+  testing::run_ranks(2, [&](const ProcessGroup& group) {
+    PhotonTracingSettings shared = s;
+    shared.processes = &group;
+    try {
+      trace_photons(scene, nodes.nodes()[0], 0, shared);
+    } catch (const InputError& e) {
+      messages[static_cast<std::size_t>(group.rank())] = e.what();
+    }
+  });
+  EXPECT_NE(messages[0].find("outgrew the memory limit"), std::string::npos) << messages[0];
+  EXPECT_EQ(messages[0], messages[1]);
+  reset_memory_limit();
+  const TracedPhotons traced = trace_photons(scene, nodes.nodes()[0], 0, s);
+  EXPECT_GT(traced.photons.size() * sizeof(Photon), 256u * 1024u);
 }
 
 }  // namespace

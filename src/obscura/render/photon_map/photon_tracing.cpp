@@ -1,14 +1,19 @@
 #include "obscura/render/photon_map/photon_tracing.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <numbers>
 
 #include "obscura/core/byte_stream.h"
 #include "obscura/core/check.h"
+#include "obscura/core/error.h"
 #include "obscura/core/interrupt.h"
+#include "obscura/core/memory_limit.h"
 #include "obscura/core/parallel.h"
 #include "obscura/core/sampling.h"
 #include "obscura/medium/phase_function.h"
@@ -370,8 +375,16 @@ TracedPhotons trace_photons(const Scene& scene, const SpectralNode& node, std::u
   const auto rank = static_cast<std::size_t>(processes.rank()),
              ranks = static_cast<std::size_t>(processes.size());
   const std::size_t own_chunks = chunks / ranks + (rank < chunks % ranks ? 1 : 0);
+  // What is stored can outgrow what was checked before tracing (one photon
+  // per launch is a lower bound: a photon stores each of its scatterings):
+  // past the memory limit the remaining chunks are skipped, and every
+  // process then learns whether any did so (below).
+  const std::uint64_t limit = memory_limit_bytes();
+  std::atomic<std::uint64_t> stored_bytes{0};
+  std::atomic<bool> over{false};
   parallel_for(own_chunks, settings.threads, [&](std::size_t own) {
     throw_if_interrupted();
+    if (over.load()) return;
     const std::size_t c = own * ranks + rank;
     MediumPoint scratch;
     const long long begin = static_cast<long long>(c) * kChunk, end = std::min(n, begin + kChunk);
@@ -395,7 +408,33 @@ TracedPhotons trace_photons(const Scene& scene, const SpectralNode& node, std::u
       launched[c][source] += l.power;
       if (l.power > 0) trace_photon(scene, node, lambda, l, settings, rng, scratch, stored[c]);
     }
+    const std::uint64_t bytes =
+        stored[c].photons.size() * sizeof(Photon) + stored[c].flights.size() * sizeof(PhotonFlight);
+    if ((stored_bytes += bytes) > limit) over = true;
   });
+  // Every process the same verdict, so that none waits in a collective
+  // another has left.
+  bool any_over = over.load();
+  std::uint64_t all_bytes = stored_bytes.load();
+  if (ranks > 1) {
+    ByteWriter mine;
+    mine.put(stored_bytes.load());
+    mine.put(static_cast<std::uint8_t>(any_over ? 1 : 0));
+    all_bytes = 0;
+    for (const std::string& bytes : processes.all_gather(mine.take())) {
+      ByteReader in(bytes);
+      all_bytes += in.get<std::uint64_t>();
+      any_over = in.get<std::uint8_t>() != 0 || any_over;
+    }
+    any_over = any_over || all_bytes > limit;
+  }
+  if (any_over)
+    throw InputError(
+        "", settings.memory_field,
+        fmt::format("the photons stored while tracing ({:.3g} GiB when tracing "
+                    "stopped, at {} photons per spectral node) outgrew the memory "
+                    "limit: {}; give fewer photons",
+                    static_cast<double>(all_bytes) / (1ull << 30), n, memory_limit_text()));
   if (ranks > 1) share_chunks(processes, stored, launched);
   std::size_t total_photons = 0, total_flights = 0;
   for (const auto& s : stored) {

@@ -33,6 +33,7 @@
 // reflection is already part of the surface radiance the environment source
 // uses.
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "obscura/core/process_group.h"
@@ -64,6 +65,9 @@ struct PhotonTracingSettings {
   // process receives every chunk, in chunk order, so the photons are the same
   // bits for any number of processes. Called by every process together.
   const ProcessGroup* processes = &single_process();
+  // The setting that asks for the photons, for the message when what is
+  // stored while tracing outgrows the memory limit (core/memory_limit.h).
+  std::string memory_field = "render/photon_map/photons";
   // Keep the flights that end in the collisions that would be stored (and
   // those of such photons that leave the medium or meet a surface), instead
   // of the stored photons: TracedPhotons::flights, photons left empty.
@@ -84,6 +88,9 @@ struct TracedPhotons {
   long long launched_count[3] = {0, 0, 0};  // sun, environment, emission
 };
 
+// Throws InputError naming settings.memory_field when the photons (or
+// flights) stored, on all processes together, outgrow the memory limit: the
+// tracing stops at the next chunk, and every process throws alike.
 TracedPhotons trace_photons(const Scene& scene, const SpectralNode& node, std::uint64_t stream_base,
                             const PhotonTracingSettings& settings);
 

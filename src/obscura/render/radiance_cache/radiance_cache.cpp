@@ -284,6 +284,7 @@ void RadianceCache::splat(const Scene& scene, const SpectralNode& node, int inde
   tracing.seed = scene.settings.seed;
   tracing.threads = scene.settings.threads;
   tracing.processes = processes_;
+  tracing.memory_field = "render/radiance_cache/photons";
   tracing.lateral_period_m = lattice_.periodic() ? settings.lateral_period_m : 0.0;
   // The flights' tracks where the records hold the medium and the kernel is
   // the lattice's own hat (flight_splat.h), else the collisions.
