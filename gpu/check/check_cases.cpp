@@ -268,7 +268,7 @@ bool case_ea256(const CheckOptions& o) {
   spec.voxels = {256, 256, 256};
   spec.voxel_m = 30.0 / 256;
   spec.origin_m = {-15, -15, -15};
-  spec.lobes = {{{0, 0, 0}, 10.0 / 2.0, 1.0}};  // bench: radius 10 m as 2σ
+  spec.lobes = {{{0, 0, 0}, 10.0, 1.0}};  // the bench's puff: σ = 10 m, grid ±1.5 σ
   spec.wavelengths_um = {10.0};
   spec.peak_sigma_a = {0.05};
   spec.peak_sigma_s = {0.02};

@@ -53,7 +53,9 @@ TEST_F(RenderDeviceTest, TheGpuRendersOrSaysWhyItCannot) {
   std::string why;
   const bool gpu = gpu_device_count(why) > 0;
   EXPECT_EQ(why.empty(), gpu);
-  if (!built_with_cuda()) EXPECT_NE(why.find("built without CUDA"), std::string::npos) << why;
+  if (!built_with_cuda()) {
+    EXPECT_NE(why.find("built without CUDA"), std::string::npos) << why;
+  }
   for (const auto& [render_settings, option] :
        {std::pair{nlohmann::json::object(), std::string("--device gpu")},
         std::pair{nlohmann::json{{"device", "gpu"}}, std::string()}}) {

@@ -15,6 +15,7 @@
 #include <cstring>
 
 #include "medium/test_grids.h"
+#include "obscura/core/check.h"
 #include "obscura/gpu/host_executor.h"
 #include "obscura/medium/grid_medium.h"
 #include "obscura/medium/homogeneous_medium.h"
@@ -36,7 +37,7 @@ Scene grid_scene(RenderMethod method) {
   a.bands = {Band::flat("m", 3.2, 4.9), Band::flat("n", 4.1, 4.6)};
   Sensor b = a;
   b.name = "b";
-  b.camera = PinholeCamera({-9, 6, 2}, {0, 1, 3}, {0, 0, 1}, 55.0, 17, 13);
+  b.camera = PinholeCamera({-9, 6, 4}, {0, 1, 3}, {0, 0, 1}, 55.0, 17, 13);
   b.bands = {Band::flat("m", 3.2, 4.9)};
   scene.sensors = {a, b};
   scene.surfaces.push_back(std::make_unique<GroundPlane>("ground", SurfaceMaterial{300, 0.8}, 2.4));

@@ -10,6 +10,7 @@
 #include <cmath>
 
 #include "obscura/gpu/host_executor.h"
+#include "obscura/render/radiance_cache/radiance_cache.h"
 #include "support/frame_lattice.h"
 #include "support/sunlit_grid.h"
 
@@ -41,15 +42,18 @@ TEST(SunDepthJob, EqualsTheCachesOwnOpticalDepthsToTheSun) {
         const float* e = expected + slot * stride;
         // Left for the caller: zero until the executor fills it.
         ASSERT_EQ(before[slot * stride + record::kTauSun], 0.0f);
-        if (lattice.slot_inside(slot))
+        if (lattice.slot_inside(slot)) {
           ASSERT_NEAR(r[record::kTauSun], e[record::kTauSun], 2e-6 * e[record::kTauSun] + 1e-6)
               << "node " << u << " slot " << slot;
-        else
+        } else {
           ASSERT_EQ(r[record::kTauSun], 0.0f);
+        }
         deep += e[record::kTauSun] > 1.0f;
         shaded += r[record::kSunVisibility] == 0.0f;
-        for (int c = 0; c < stride; ++c)
-          if (c != record::kTauSun) ASSERT_EQ(r[c], before[slot * stride + c]) << "channel " << c;
+        for (int c = 0; c < stride; ++c) {
+          if (c == record::kTauSun) continue;
+          ASSERT_EQ(r[c], before[slot * stride + c]) << "channel " << c;
+        }
       }
     }
     EXPECT_GT(deep, 100) << "degree " << degree;  // the sun crosses real medium

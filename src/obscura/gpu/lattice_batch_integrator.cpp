@@ -116,7 +116,7 @@ void LatticeBatchIntegrator::march_batch(int sensor, std::span<const CameraRay> 
   const std::vector<int> first = band_output_offsets(bands);
   const std::size_t count = rays.size(), items = count * static_cast<std::size_t>(first.back());
   out.count = count;
-  out.cells = 0;
+  out.band_cells.assign(bands.size(), 0);
   if (!volume()) {  // no medium: nothing in front of the background
     out.radiance.assign(items, 0.0);
     out.transmittance.assign(items, 1.0);
@@ -130,12 +130,13 @@ void LatticeBatchIntegrator::march_batch(int sensor, std::span<const CameraRay> 
       [&] { executor_->march(requests_[static_cast<std::size_t>(sensor)], march_rays, result); });
   out.radiance = std::move(result.radiance);
   out.transmittance = std::move(result.transmittance);
-  // Cells per band and ray, as the CPU's integrators count them (all nodes
-  // of a band cross the same cells).
-  for (std::size_t b = 0; b + 1 < first.size(); ++b)
+  // Cells per band, as the CPU's integrators count them: once per ray and
+  // band (all nodes of a band cross the same cells: its first node's count).
+  for (std::size_t b = 0; b < bands.size(); ++b)
     if (first[b + 1] > first[b])
-      out.cells = std::accumulate(result.cells.begin() + first[b] * count,
-                                  result.cells.begin() + (first[b] + 1) * count, out.cells);
+      out.band_cells[b] =
+          std::accumulate(result.cells.begin() + first[b] * count,
+                          result.cells.begin() + (first[b] + 1) * count, std::uint64_t{0});
 }
 
 }  // namespace obscura

@@ -29,7 +29,7 @@ void BatchIntegrator::band_radiance(const CameraRay& ray, int sensor, int band, 
                                     double* transmittance) const {
   MediumBatch batch;
   march_batch(sensor, std::span<const CameraRay>(&ray, 1), batch);
-  workspace.segments += batch.cells;
+  workspace.segments += batch.band_cells[static_cast<std::size_t>(band)];
   const std::vector<SpectralNodes>& bands = spectra_[static_cast<std::size_t>(sensor)];
   const SpectralNodes& nodes = bands[static_cast<std::size_t>(band)];
   const int first = band_output_offsets(bands)[static_cast<std::size_t>(band)];

@@ -22,7 +22,9 @@ struct MediumBatch {
   // The radiance (W m⁻² sr⁻¹ µm⁻¹) the medium sends back along the ray up to
   // its end, and the medium's transmittance to there.
   std::vector<double> radiance, transmittance;
-  std::uint64_t cells = 0;  // medium cells visited (RenderStats::segments)
+  // Per band: the medium cells its rays visited (RenderStats::segments; the
+  // CPU's integrators count a ray's cells once per band).
+  std::vector<std::uint64_t> band_cells;
 };
 
 class BatchIntegrator : public Integrator {

@@ -260,7 +260,7 @@ void render_batches(const SensorRender& job, const BatchIntegrator& integrator,
       }
     });
     integrator.march_batch(job.sensor_index, rays, batch);
-    counters.segments += batch.cells;
+    for (const std::uint64_t cells : batch.band_cells) counters.segments += cells;
     const std::size_t count = rays.size();
     parallel_for(static_cast<std::size_t>(batch_rows), scene.settings.threads, [&](std::size_t r) {
       throw_if_interrupted();
