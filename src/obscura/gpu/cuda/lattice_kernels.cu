@@ -5,26 +5,28 @@
 namespace obscura {
 namespace {
 
+// Runs item(i) for every i < items, each thread taking i = its index,
+// index + the grid's threads, … (launch_geometry.h).
+template <class Item>
+__device__ void for_grid_items(std::uint64_t items, const Item& item) {
+  const std::uint64_t step = static_cast<std::uint64_t>(gridDim.x) * blockDim.x;
+  for (std::uint64_t i = static_cast<std::uint64_t>(blockIdx.x) * blockDim.x + threadIdx.x;
+       i < items; i += step)
+    item(i);
+}
+
 // The job is a __grid_constant__ parameter: read in place from the
 // parameter space by every thread, not copied to each thread's stack.
 template <int Stride, MarchSource Kind>
 __global__ void __launch_bounds__(kThreadsPerBlock)
     march_kernel(const __grid_constant__ MarchJob job) {
-  const std::uint64_t items = job.items();
-  const std::uint64_t step = static_cast<std::uint64_t>(gridDim.x) * blockDim.x;
-  for (std::uint64_t item = static_cast<std::uint64_t>(blockIdx.x) * blockDim.x + threadIdx.x;
-       item < items; item += step)
-    march_item<Stride, Kind>(job, item);
+  for_grid_items(job.items(), [&](std::uint64_t i) { march_item<Stride, Kind>(job, i); });
 }
 
 template <int Stride>
 __global__ void __launch_bounds__(kThreadsPerBlock)
     sun_depth_kernel(const __grid_constant__ SunDepthJob job) {
-  const std::uint64_t items = job.items();
-  const std::uint64_t step = static_cast<std::uint64_t>(gridDim.x) * blockDim.x;
-  for (std::uint64_t item = static_cast<std::uint64_t>(blockIdx.x) * blockDim.x + threadIdx.x;
-       item < items; item += step)
-    sun_depth_item<Stride>(job, item);
+  for_grid_items(job.items(), [&](std::uint64_t i) { sun_depth_item<Stride>(job, i); });
 }
 
 }  // namespace
