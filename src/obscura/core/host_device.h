@@ -16,3 +16,8 @@
 #else
 #define OBSCURA_DEVICE_CODE 0
 #endif
+
+// Inlined whatever the compiler's heuristics say (GCC, Clang and nvcc): for
+// the lattice march's cell walk and its callbacks, whose state must stay in
+// registers (a call left in place cost the CPU march 12 %, measured).
+#define OBSCURA_ALWAYS_INLINE __attribute__((always_inline))

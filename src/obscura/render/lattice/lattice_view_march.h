@@ -24,6 +24,7 @@
 #include <array>
 #include <cstdint>
 #include <cstring>
+#include <utility>
 
 #include "obscura/core/host_device.h"
 #include "obscura/core/ray.h"
@@ -133,8 +134,10 @@ OBSCURA_HOST_DEVICE inline void corner_weights(const Vec3& o, const Vec3& d, dou
 // holding medium and a positive length: first the 8³ blocks the lattice
 // holds, then their cells.
 template <class Visit>
-OBSCURA_HOST_DEVICE void for_each_cell(const LatticeView& lattice, const Vec3& o, const Vec3& dir,
-                                       double t_begin, double t_end, Visit&& visit) {
+OBSCURA_ALWAYS_INLINE OBSCURA_HOST_DEVICE inline void for_each_cell(const LatticeView& lattice,
+                                                                    const Vec3& o, const Vec3& dir,
+                                                                    double t_begin, double t_end,
+                                                                    Visit&& visit) {
   constexpr int kBlock = LatticeView::kBlock;
   const std::size_t zero_slot = lattice.zero_slot;
   const std::int32_t* dims = lattice.dims;
@@ -186,10 +189,12 @@ OBSCURA_HOST_DEVICE std::uint64_t march_lattice_ray(const LatticeView& lattice,
   if (!lattice.domain.intersect(lray, t_begin, t_end) || !(t_end > t_begin)) return 0;
   const int n = MaxNodes == 1 ? 1 : nodes;  // a constant for a device thread's one node
 
-  // σt and ε at the cell's entry, middle and exit, per node.
-  double sigma_t[3][MaxNodes], emissivity[3][MaxNodes];
-  const double* const sigma_t_at[3] = {sigma_t[0], sigma_t[1], sigma_t[2]};
-  const double* const emissivity_at[3] = {emissivity[0], emissivity[1], emissivity[2]};
+  // σt and ε at the cell's entry, middle and exit, per node: pointers into
+  // `values_at`, the entry and exit swapped when the exit is reused (a
+  // device thread's one node copies instead, so that it stays in registers).
+  double values_at[6][MaxNodes];
+  double* sigma_t[3] = {values_at[0], values_at[1], values_at[2]};
+  double* emissivity[3] = {values_at[3], values_at[4], values_at[5]};
   std::array<float, 8> w;
   float values[Stride];
   std::uint64_t cells = 0;
@@ -198,14 +203,18 @@ OBSCURA_HOST_DEVICE std::uint64_t march_lattice_ray(const LatticeView& lattice,
   const Vec3& dir = lray.direction;
   d::for_each_cell(lattice, o, dir, t_begin, t_end,
                    [&](const std::array<int, 3>& cell, double t0, double t1,
-                       const std::array<std::size_t, 8>& slot) {
+                       const std::array<std::size_t, 8>& slot) OBSCURA_ALWAYS_INLINE {
                      ++cells;
                      const bool reuse = t0 == previous_end;
-                     if (reuse)
-                       for (int j = 0; j < n; ++j) {
-                         sigma_t[0][j] = sigma_t[2][j];
-                         emissivity[0][j] = emissivity[2][j];
+                     if (reuse) {
+                       if constexpr (MaxNodes == 1) {
+                         sigma_t[0][0] = sigma_t[2][0];
+                         emissivity[0][0] = emissivity[2][0];
+                       } else {
+                         std::swap(sigma_t[0], sigma_t[2]);
+                         std::swap(emissivity[0], emissivity[2]);
                        }
+                     }
                      const double ts[3] = {t0, 0.5 * (t0 + t1), t1};
                      for (int p = reuse ? 1 : 0; p < 3; ++p) {
                        d::corner_weights(o, dir, ts[p], cell, w);
@@ -214,7 +223,7 @@ OBSCURA_HOST_DEVICE std::uint64_t march_lattice_ray(const LatticeView& lattice,
                          source.point(j, values, sigma_t[p][j], emissivity[p][j]);
                        }
                      }
-                     add_cell(t1 - t0, n, sigma_t_at, emissivity_at, radiance, transmittance);
+                     add_cell(t1 - t0, n, sigma_t, emissivity, radiance, transmittance);
                      previous_end = t1;
                    });
   return cells;
@@ -237,7 +246,7 @@ OBSCURA_HOST_DEVICE std::uint64_t march_lattice_view(const LatticeView& lattice,
 // entry, middle and exit, exact for the trilinear σt, a cubic along the line,
 // over the same cells as the march. Reads only the medium channels, so the
 // light channels of the same records may be written meanwhile (the sun's
-// optical depths, gpu/sun_depth_item.h).
+// optical depths, gpu/sun_depth_job.h).
 template <int Stride>
 OBSCURA_HOST_DEVICE double lattice_optical_depth(const LatticeView& lattice, const float* records,
                                                  const Ray& lray, double t_max) {
@@ -253,7 +262,7 @@ OBSCURA_HOST_DEVICE double lattice_optical_depth(const LatticeView& lattice, con
   double previous_end = -1.0;
   d::for_each_cell(lattice, o, dir, t_begin, t_end,
                    [&](const std::array<int, 3>& cell, double t0, double t1,
-                       const std::array<std::size_t, 8>& slot) {
+                       const std::array<std::size_t, 8>& slot) OBSCURA_ALWAYS_INLINE {
                      const bool reuse = t0 == previous_end;
                      if (reuse) sigma_t[0] = sigma_t[2];
                      const double ts[3] = {t0, 0.5 * (t0 + t1), t1};
