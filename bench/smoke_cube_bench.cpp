@@ -153,6 +153,12 @@ Timed render_timed(Scene& scene) {
   return {bench::seconds_since(t0), block_means(img, scene.sensors[0].camera.width())};
 }
 
+constexpr const char* kUsage =
+    "usage: bench_smoke_cube [--reference-spp 4096] [--target 0.02] [--threads N] [--size 256]\n"
+    "         [--methods path-tracer,photonmap,radiance-cache] [--reference-file F]\n"
+    "         [--sh-degree 3] [--kernel R] [--voxel M] [--photons 25000] [--steps 12]\n"
+    "         [--error-map F] [--cache-spp 4] [--medium grid|box]\n";
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -162,8 +168,16 @@ int main(int argc, char** argv) {
   int max_steps = 12, cache_spp = 4;
   std::string medium_form = "grid";
   std::string methods = "path-tracer,photonmap,radiance-cache", reference_file, error_map;
-  for (int i = 1; i + 1 < argc; i += 2) {
+  for (int i = 1; i < argc; i += 2) {
     const std::string a = argv[i];
+    if (a == "--help" || a == "-h") {
+      std::printf("%s", kUsage);
+      return 0;
+    }
+    if (i + 1 == argc) {
+      std::fprintf(stderr, "option %s needs a value\n%s", a.c_str(), kUsage);
+      return 2;
+    }
     if (a == "--reference-spp")
       reference_spp = std::atoi(argv[i + 1]);
     else if (a == "--target")
@@ -193,7 +207,7 @@ int main(int argc, char** argv) {
     else if (a == "--photons")
       cache_photons = std::atoll(argv[i + 1]);
     else {
-      std::fprintf(stderr, "unknown option %s\n", a.c_str());
+      std::fprintf(stderr, "unknown option %s\n%s", a.c_str(), kUsage);
       return 2;
     }
   }

@@ -13,6 +13,7 @@
 #include "obscura/core/check.h"
 #include "obscura/core/error.h"
 #include "obscura/core/interrupt.h"
+#include "obscura/gpu/gpu_device.h"
 #include "obscura/io/provenance.h"
 #include "obscura/report/sequence_output.h"
 #include "obscura/report/sequence_resume.h"
@@ -87,6 +88,7 @@ Command add_render_command(CLI::App& app, const Invocation& invocation) {
     double at = 0.0;
     std::string time_range;
     std::string share = "auto";
+    std::optional<std::string> device;
     bool json = false, resume = false;
     std::vector<std::string> formats;
   };
@@ -110,6 +112,11 @@ Command add_render_command(CLI::App& app, const Invocation& invocation) {
                   "choice (docs/cluster.md)")
       ->check(CLI::IsMember({"auto", "frames", "tiles"}))
       ->capture_default_str();
+  cmd->add_option("--device", o->device,
+                  "Where the camera march runs: cpu, or gpu (a CUDA build; emission-absorption and "
+                  "radiance-cache over a cloud that is one voxel grid, docs/gpu.md) (default: the "
+                  "scene's \"device\", else cpu)")
+      ->check(CLI::IsMember({"cpu", "gpu"}));
   cmd->add_flag("--resume", o->resume,
                 "Continue a --time sequence that stopped part-way in the output folder: the "
                 "frames it completed are read back, not rendered again (the same scene, inputs, "
@@ -140,6 +147,14 @@ Command add_render_command(CLI::App& app, const Invocation& invocation) {
               if (o->threads) scene.settings.threads = *o->threads;
               if (o->seed) scene.settings.seed = *o->seed;
               apply_formats(o->formats, scene);
+              if (o->device) {
+                scene.settings.device = *parse_render_device(*o->device);
+                check_render_settings(scene.settings, [](std::string_view, std::string_view what) {
+                  return InputError("", "--device", std::string(what));
+                });
+              }
+              // Before any output: a GPU asked for where there is none is an error now.
+              if (scene.settings.device == RenderDevice::kGpu) require_gpu();
               if (!root) return;
               Provenance provenance =
                   make_provenance(invocation.command_line, scene.settings.seed, scene.input_files);

@@ -14,7 +14,7 @@
 #include "bindings.h"
 #include "long_call.h"
 #include "numpy_view.h"
-#include "obscura/render/integrator_registry.h"
+#include "obscura/gpu/frame_integrator.h"
 #include "obscura/render/renderer.h"
 #include "scene_handle.h"
 #include "settings_override.h"
@@ -76,7 +76,7 @@ std::vector<std::shared_ptr<SensorImage>> render_sensors(SceneHandle& h, double 
   // As render_frame (sequence/sequence_runner.h): one integrator prepared for
   // every sensor of the frame, then each sensor through it.
   const FrameSpectra spectra = frame_spectra(scene);
-  const std::unique_ptr<Integrator> integrator = make_integrator(scene, spectra);
+  const std::unique_ptr<Integrator> integrator = make_frame_integrator(scene, spectra);
   std::vector<std::shared_ptr<SensorImage>> images;
   for (int s : sensors) {
     RenderOptions options;

@@ -14,6 +14,8 @@
 #include "obscura/core/tabulated_spectrum.h"
 #include "obscura/core/version.h"
 #include "obscura/film/sensor_image.h"
+#include "obscura/gpu/frame_integrator.h"
+#include "obscura/gpu/gpu_device.h"
 #include "obscura/io/cloud_manifest.h"
 #include "obscura/io/provenance.h"
 #include "obscura/io/vdb_keyframe.h"

@@ -66,6 +66,30 @@ TEST(RenderSettings, ErrorsNameTheJsonPath) {
   EXPECT_TRUE(testing::contains(e.detail(), render_method_names())) << e.what();
 }
 
+// "device": "gpu" is range-checked with the method it renders (docs/gpu.md):
+// the GPU marches emission–absorption and the radiance cache with the cell
+// quadrature, and nothing else slips through to the CPU.
+TEST(RenderSettings, TheGpuTakesTheLatticeMethodsOnly) {
+  EXPECT_EQ(parse(nlohmann::json::object()).device, RenderDevice::kCpu);
+  EXPECT_EQ(parse({{"device", "gpu"}}).device, RenderDevice::kGpu);
+  EXPECT_EQ(parse({{"device", "gpu"}, {"method", "radiance-cache"}}).device, RenderDevice::kGpu);
+  EXPECT_EQ(parse({{"device", "cpu"}, {"method", "photonmap"}}).device, RenderDevice::kCpu);
+  EXPECT_EQ(parse_render_device(render_device_name(RenderDevice::kGpu)), RenderDevice::kGpu);
+  EXPECT_FALSE(parse_render_device("tpu"));
+  InputError e = parse_error({{"device", "tpu"}});
+  EXPECT_EQ(e.field(), "/render/device");
+  for (const char* method : {"path-tracer", "photonmap"}) {
+    e = parse_error({{"device", "gpu"}, {"method", method}});
+    EXPECT_EQ(e.field(), "/render/device");
+    EXPECT_TRUE(testing::contains(e.detail(), "\"emission-absorption\" and \"radiance-cache\"") &&
+                testing::contains(e.detail(), method))
+        << e.what();
+  }
+  e = parse_error({{"device", "gpu"}, {"emission_quadrature", "adaptive"}});
+  EXPECT_EQ(e.field(), "/render/device");
+  EXPECT_TRUE(testing::contains(e.detail(), "\"cell\"")) << e.what();
+}
+
 // The command line names its own options: the same checks, another namer.
 TEST(RenderSettings, OneCheckForTheSceneFileAndTheCommandLine) {
   RenderSettings s;

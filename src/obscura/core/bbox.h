@@ -3,6 +3,7 @@
 #include <limits>
 #include <utility>
 
+#include "obscura/core/host_device.h"
 #include "obscura/core/ray.h"
 
 namespace obscura {
@@ -33,7 +34,7 @@ struct BBox3 {
   }
 
   // Clips [t_min, t_max] to the part of the ray inside the box; false if none is.
-  bool intersect(const Ray& ray, double& t_min, double& t_max) const {
+  OBSCURA_HOST_DEVICE bool intersect(const Ray& ray, double& t_min, double& t_max) const {
     for (int a = 0; a < 3; ++a) {
       const double inv = 1.0 / ray.direction[a];  // +-inf for axis-parallel rays is intended
       double t0 = (lo[a] - ray.origin[a]) * inv;

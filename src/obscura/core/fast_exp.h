@@ -8,14 +8,17 @@
 // remainder |r|¹³/13! ≤ 1.7e-16 is below double rounding, and 2^k built in
 // the exponent bits. Results below 2^−1022 (x < −708.39) are returned as 0
 // (an absolute error below 2.3e-308); above x = 700, where 2^k would
-// overflow before the product, libm's exp answers; NaN stays NaN.
+// overflow before the product, libm's exp answers; NaN stays NaN. The same
+// code on a CUDA device (core/host_device.h), where exp is CUDA's.
 #include <bit>
 #include <cmath>
 #include <cstdint>
 
+#include "obscura/core/host_device.h"
+
 namespace obscura {
 
-inline double fast_exp(double x) {
+OBSCURA_HOST_DEVICE inline double fast_exp(double x) {
   constexpr double kLog2e = 1.4426950408889634;
   constexpr double kLn2Hi = 6.93147180369123816490e-01;  // high bits of ln 2 (exact k ln2_hi)
   constexpr double kLn2Lo = 1.90821492927058770002e-10;  // ln 2 − kLn2Hi
@@ -43,7 +46,7 @@ inline double fast_exp(double x) {
 
 // e^{−x} for 0 ≤ x ≤ 0.1 (the cell quadrature's thin cells): its Taylor
 // series to degree 9, whose remainder x¹⁰/10! ≤ 2.8e-17 is below rounding.
-inline double exp_neg_small(double x) {
+OBSCURA_HOST_DEVICE inline double exp_neg_small(double x) {
   const double y = -x;
   double p = 1.0 / 362880.0;  // 1/9!
   p = p * y + 1.0 / 40320.0;

@@ -4,6 +4,8 @@
 // Wavelengths are in micrometres; spectral radiance in W m⁻² sr⁻¹ µm⁻¹.
 #include <cmath>
 
+#include "obscura/core/host_device.h"
+
 namespace obscura {
 
 inline constexpr double kPlanckH = 6.62607015e-34;    // J s
@@ -46,8 +48,9 @@ struct PlanckAtWavelength {
   }
   // The same with exp where exp(x) − 1 loses nothing (x = c2/(λT) > 0.1, i.e.
   // λT < 1.4e5 µm K: every obscurant band and temperature); exp is cheaper
-  // than expm1. Relative difference from operator() below 2e-15.
-  double fast(double temperature_k) const {
+  // than expm1. Relative difference from operator() below 2e-15. Also on a
+  // CUDA device (core/host_device.h), with CUDA's exp.
+  OBSCURA_HOST_DEVICE double fast(double temperature_k) const {
     if (!(temperature_k > 0.0)) return 0.0;
     const double x = b / temperature_k;
     return a / (x > 0.1 ? std::exp(x) - 1.0 : std::expm1(x));

@@ -3,20 +3,23 @@
 // Traversal Algorithm"): visits, in order, every cell of a regular lattice that
 // the line p(t) = o + t d crosses for t in [t_begin, t_end], with the exact
 // entry and exit parameters of each. Cells have side `cell_size` in the
-// lattice's coordinates; indices are clamped to [lo, hi] (inclusive).
+// lattice's coordinates; indices are clamped to [lo, hi] (inclusive). Runs on
+// a CUDA device too (core/host_device.h): the lattice march's.
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
 
+#include "obscura/core/host_device.h"
 #include "obscura/core/vec3.h"
 
 namespace obscura {
 
 class LatticeWalker {
  public:
-  LatticeWalker(const Vec3& o, const Vec3& d, double t_begin, double t_end, double cell_size,
-                const std::array<int, 3>& lo, const std::array<int, 3>& hi)
+  OBSCURA_HOST_DEVICE LatticeWalker(const Vec3& o, const Vec3& d, double t_begin, double t_end,
+                                    double cell_size, const std::array<int, 3>& lo,
+                                    const std::array<int, 3>& hi)
       : o_(o), d_(d), t_(t_begin), t_end_(t_end), cell_size_(cell_size), lo_(lo), hi_(hi) {
     const Vec3 p = o + d * t_begin;
     for (int a = 0; a < 3; ++a) {
@@ -33,7 +36,7 @@ class LatticeWalker {
   }
 
   // Writes the next cell and its [t0, t1]; false when the range is exhausted.
-  bool next(std::array<int, 3>& cell, double& t0, double& t1) {
+  OBSCURA_HOST_DEVICE bool next(std::array<int, 3>& cell, double& t0, double& t1) {
     if (done_ || !(t_ < t_end_)) return false;
     int axis = 0;
     if (t_next_[1] < t_next_[axis]) axis = 1;
@@ -55,7 +58,7 @@ class LatticeWalker {
   }
 
  private:
-  double next_crossing(int a) const {
+  OBSCURA_HOST_DEVICE double next_crossing(int a) const {
     if (step_[a] == 0) return std::numeric_limits<double>::infinity();
     const double plane = (step_[a] > 0 ? cell_[a] + 1 : cell_[a]) * cell_size_;
     return std::max((plane - o_[a]) / d_[a], t_);

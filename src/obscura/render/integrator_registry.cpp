@@ -3,6 +3,7 @@
 #include <string>
 #include <type_traits>
 
+#include "obscura/core/check.h"
 #include "obscura/render/emission_absorption/emission_absorption_integrator.h"
 #include "obscura/render/path_tracer/path_tracer_integrator.h"
 #include "obscura/render/photon_map/photon_map_integrator.h"
@@ -43,6 +44,9 @@ IntegratorFactory integrator_factory(RenderMethod method) {
 
 std::unique_ptr<Integrator> make_integrator(const Scene& scene, const FrameSpectra& spectra,
                                             const ProcessGroup& processes) {
+  // Never the CPU in the GPU's stead: the GPU's integrator is the gpu layer's.
+  OBSCURA_CHECK_MSG(scene.settings.device == RenderDevice::kCpu,
+                    "\"device\": \"gpu\" takes make_frame_integrator (gpu/frame_integrator.h)");
   return integrator_factory(scene.settings.method)(scene, spectra, processes);
 }
 

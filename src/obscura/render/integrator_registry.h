@@ -20,7 +20,9 @@ IntegratorFactory integrator_factory(RenderMethod method);
 
 // The integrator of scene.settings.method, prepared for the staged scene and
 // `spectra` (photon tracing and the like happen here). The integrator keeps
-// references to both: they must outlive it.
+// references to both: they must outlive it. The CPU's only: a scene whose
+// settings ask for the GPU is an InternalError here (the gpu layer's
+// make_frame_integrator, gpu/frame_integrator.h, makes either).
 std::unique_ptr<Integrator> make_integrator(const Scene& scene, const FrameSpectra& spectra,
                                             const ProcessGroup& processes = single_process());
 

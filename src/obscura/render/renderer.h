@@ -9,6 +9,11 @@
 // methods get standard errors and, with a target relative standard error,
 // further rounds of samples per pixel.
 //
+// An integrator that marches whole images (render/batch_integrator.h: the
+// GPU's) gets every camera ray of a batch of rows at once, after the CPU has
+// found their first surfaces; the renderer then adds the background and the
+// band sums per ray as above, so the same samples give the same pixels.
+//
 // Determinism: pixel (x, y) of a sensor draws from its own stream, selected
 // by its index y·width + x under settings.seed (core/rng.h); rows go to TBB
 // threads but share no state, so images are bit-identical for any thread
@@ -44,7 +49,9 @@ SensorImage blank_sensor_image(const Sensor& sensor, bool monte_carlo);
 SensorImage render_sensor(const Scene& scene, int sensor, const Integrator& integrator,
                           const FrameSpectra& spectra, const RenderOptions& options = {});
 
-// One sensor on its own: prepares the method for that sensor only.
+// One sensor on its own: prepares the method for that sensor only, with the
+// CPU's integrators (render/integrator_registry.h; "device": "gpu" takes
+// gpu/frame_integrator.h and the overload above).
 SensorImage render_sensor(const Scene& scene, const Sensor& sensor,
                           const RenderOptions& options = {});
 

@@ -103,6 +103,16 @@ std::string render_method_names() {
   return names;
 }
 
+std::optional<RenderDevice> parse_render_device(std::string_view name) {
+  if (name == "cpu") return RenderDevice::kCpu;
+  if (name == "gpu") return RenderDevice::kGpu;
+  return std::nullopt;
+}
+
+std::string_view render_device_name(RenderDevice device) {
+  return device == RenderDevice::kGpu ? "gpu" : "cpu";
+}
+
 bool method_scatters(RenderMethod method) { return info(method).scatters; }
 bool method_is_monte_carlo(RenderMethod method) { return info(method).monte_carlo; }
 
@@ -125,6 +135,18 @@ void check_render_settings(const RenderSettings& s, const SettingError& error) {
           "target_relative_stderr",
           "applies to the Monte Carlo methods only (set /render/method to \"path-tracer\" or "
           "\"photonmap\")");
+
+  require(s.device == RenderDevice::kCpu || s.method == RenderMethod::kEmissionAbsorption ||
+              s.method == RenderMethod::kRadianceCache,
+          "device",
+          fmt::format("\"gpu\" renders \"method\": \"emission-absorption\" and "
+                      "\"radiance-cache\" only (not \"{}\"): set \"device\": \"cpu\" or "
+                      "one of those methods (docs/gpu.md)",
+                      render_method_name(s.method)));
+  require(s.device == RenderDevice::kCpu || s.emission_quadrature == EmissionQuadrature::kCell,
+          "device",
+          "\"gpu\" integrates with \"emission_quadrature\": \"cell\" only: set "
+          "\"device\": \"cpu\" for the adaptive quadrature (docs/gpu.md)");
 
   const PathTracerSettings& pt = s.path_tracer;
   require(pt.russian_roulette_depth >= 1 && pt.russian_roulette_depth <= 1000,
@@ -200,6 +222,12 @@ RenderSettings parse_render_settings(JsonObject& r, RenderSettings s) {
   if (seed < 0) throw r.error("seed", "must be >= 0");
   s.seed = static_cast<std::uint64_t>(seed);
   s.threads = saturate_int(r.integer_or("threads", s.threads));
+  if (r.has("device")) {
+    const std::string name = r.string("device");
+    const auto device = parse_render_device(name);
+    if (!device) throw r.error("device", fmt::format("'{}' is not \"cpu\" or \"gpu\"", name));
+    s.device = *device;
+  }
   r.finish();
   check_render_settings(s, [&](std::string_view key, std::string_view what) {
     return InputError(r.file(), r.path() + "/" + std::string(key), std::string(what));

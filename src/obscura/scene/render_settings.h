@@ -89,6 +89,15 @@ struct RadianceCacheSettings {
   bool track_length = true;
 };
 
+// Where the camera march runs ("device": "cpu" | "gpu"; docs/gpu.md). The
+// GPU (a CUDA build, gpu/) marches emission–absorption and the radiance cache
+// over a cloud that is one voxel grid; everything else runs on the CPU.
+enum class RenderDevice { kCpu, kGpu };
+
+// "cpu" or "gpu"; nothing for another name.
+std::optional<RenderDevice> parse_render_device(std::string_view name);
+std::string_view render_device_name(RenderDevice device);
+
 struct RenderSettings {
   RenderMethod method = RenderMethod::kEmissionAbsorption;
   // Emission-absorption: 1 = the pixel centre, more = stratified jitter.
@@ -105,8 +114,9 @@ struct RenderSettings {
   // Camera rays that escape inside the sun's disc see the sun. Off where a
   // caller scores the unscattered sunlight itself (validate slab: T_direct).
   bool camera_sees_sun = true;
-  std::uint64_t seed = 1;  // every random stream derives from it
-  int threads = 0;         // 0: all cores; images do not depend on it
+  std::uint64_t seed = 1;                    // every random stream derives from it
+  int threads = 0;                           // 0: all cores; images do not depend on it
+  RenderDevice device = RenderDevice::kCpu;  // where the camera march runs
   PathTracerSettings path_tracer;
   PhotonMapSettings photon_map;
   RadianceCacheSettings radiance_cache;

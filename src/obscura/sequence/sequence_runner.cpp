@@ -16,6 +16,7 @@
 #include "obscura/core/interrupt.h"
 #include "obscura/core/time_steps.h"
 #include "obscura/film/sensor_image_rows.h"
+#include "obscura/gpu/frame_integrator.h"
 #include "obscura/render/renderer.h"
 #include "obscura/scene/spectral_coverage.h"
 #include "obscura/sequence/frame_message.h"
@@ -106,7 +107,7 @@ RenderedFrame render_frame(const Scene& scene, std::size_t index, std::size_t fr
   frame.index = index;
   frame.time_s = scene.time_s;
   const FrameSpectra spectra = frame_spectra(scene);
-  const std::unique_ptr<Integrator> integrator = make_integrator(scene, spectra, processes);
+  const std::unique_ptr<Integrator> integrator = make_frame_integrator(scene, spectra, processes);
   for (std::size_t s = 0; s < scene.sensors.size(); ++s) {
     RenderOptions options;
     options.row_offset = processes.rank();

@@ -24,10 +24,12 @@
 //    from zero puts it, so that rounding does not choose the rule there.) The result is linear in
 //    the three S values, so noise in them (the radiance cache's photon estimates) averages out
 //    without bias.
+// The same code runs on a CUDA device (core/host_device.h, docs/gpu.md).
 #include <algorithm>
 #include <cmath>
 
 #include "obscura/core/fast_exp.h"
+#include "obscura/core/host_device.h"
 
 namespace obscura {
 
@@ -39,7 +41,8 @@ struct CellEmission {
 };
 
 // `sigma_t` (1/m) and `emissivity` at s = 0, h/2, h; `h` in m.
-inline CellEmission integrate_cell(double h, const double sigma_t[3], const double emissivity[3]) {
+OBSCURA_HOST_DEVICE inline CellEmission integrate_cell(double h, const double sigma_t[3],
+                                                       const double emissivity[3]) {
   CellEmission out;
   const double d = h / 6.0 * (sigma_t[0] + 4.0 * sigma_t[1] + sigma_t[2]);
   if (!(d > 0.0)) return out;
@@ -87,8 +90,9 @@ inline CellEmission integrate_cell(double h, const double sigma_t[3], const doub
 // cell's entry, middle and exit in sigma_t[p][j] and emissivity[p][j]: adds
 // to radiance[j] the cell's emission seen through transmittance[j] (the line
 // so far), then attenuates transmittance[j] by the cell.
-inline void add_cell(double h, int count, const double* const sigma_t[3],
-                     const double* const emissivity[3], double* radiance, double* transmittance) {
+OBSCURA_HOST_DEVICE inline void add_cell(double h, int count, const double* const sigma_t[3],
+                                         const double* const emissivity[3], double* radiance,
+                                         double* transmittance) {
   for (int j = 0; j < count; ++j) {
     const double st[3] = {sigma_t[0][j], sigma_t[1][j], sigma_t[2][j]};
     const double em[3] = {emissivity[0][j], emissivity[1][j], emissivity[2][j]};

@@ -5,6 +5,7 @@
 
 #include "obscura/render/background.h"
 #include "obscura/render/emission_absorption/emission_absorption.h"
+#include "obscura/render/emission_absorption/emission_source.h"
 #include "obscura/render/lattice/lattice_march.h"
 
 namespace obscura {
@@ -15,19 +16,6 @@ struct Workspace final : RayWorkspace {
   BackgroundScratch background;
 };
 
-// σt and σa B(T) from a record (lattice_march.h's Source).
-struct EmissionSource {
-  const SpectralNode* nodes;
-  void point(int j, const float* v, double& sigma_t, double& emissivity) const {
-    const double sigma_a = v[record::kSigmaA];
-    sigma_t = sigma_a + v[record::kSigmaS];
-    emissivity = sigma_a != 0.0 ? sigma_a * (*nodes[j].planck_table)(v[record::kTemperature]) : 0.0;
-  }
-};
-
-// Lattices up to this many nodes are laid out (only occupied blocks are stored).
-constexpr double kMaxLatticeNodes = 4e9;
-
 }  // namespace
 
 EmissionAbsorptionIntegrator::EmissionAbsorptionIntegrator(const Scene& scene,
@@ -36,20 +24,14 @@ EmissionAbsorptionIntegrator::EmissionAbsorptionIntegrator(const Scene& scene,
   if (!scene.medium || distinct_.nodes.empty() ||
       scene.settings.emission_quadrature != EmissionQuadrature::kCell)
     return;
-  const std::optional<GridFrame> frame = scene.medium->grid_frame();
-  if (!frame || !frame->voxels) return;  // not one grid
   const auto start = std::chrono::steady_clock::now();
-  lattice_ = std::make_unique<NodeLattice>(*scene.medium, 0.0, 0.0,
-                                           static_cast<std::size_t>(kMaxLatticeNodes));
-  const VoxelGrid* grid = LatticeVolume::aligned_grid(*scene.medium, *lattice_);
-  if (!grid) {
-    lattice_.reset();
-    return;
-  }
   std::vector<SpectralLerp> lerps;
   for (const SpectralNode& nd : distinct_.nodes) lerps.push_back(nd.lerp());
-  volume_ = std::make_unique<LatticeVolume>(*lattice_, lerps, record::kMediumStride, grid,
-                                            scene.settings.threads, "clouds");
+  GridRecords records =
+      grid_records(*scene.medium, lerps, record::kMediumStride, scene.settings.threads);
+  if (!records.volume) return;  // not one grid: the medium's march
+  lattice_ = std::move(records.lattice);
+  volume_ = std::move(records.volume);
   preparation_.seconds = preparation_.build_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
@@ -74,7 +56,9 @@ void EmissionAbsorptionIntegrator::band_radiance(const CameraRay& camera, int se
     transmittance[i] = 1.0;
   }
   if (volume_) {
-    const EmissionSource source{nodes.nodes().data()};
+    std::array<PlanckTableView, kMaxSpectralNodes> planck;
+    for (int i = 0; i < n; ++i) planck[i] = nodes.nodes()[i].planck_table->view();
+    const EmissionSource source{planck.data()};
     workspace.segments += march_lattice<record::kMediumStride>(
         *volume_, distinct_.index[sensor][band].data(), n, camera.ray, camera.t_end(), source,
         radiance, transmittance);

@@ -8,6 +8,12 @@
 #include "obscura/core/parallel.h"
 
 namespace obscura {
+namespace {
+
+// Lattices up to this many nodes are laid out (only occupied blocks are stored).
+constexpr double kMaxLatticeNodes = 4e9;
+
+}  // namespace
 
 const VoxelGrid* LatticeVolume::aligned_grid(const Medium& medium, const NodeLattice& lattice) {
   const std::optional<GridFrame> frame = medium.grid_frame();
@@ -78,10 +84,32 @@ LatticeVolume::LatticeVolume(const NodeLattice& lattice, const std::vector<Spect
   });
 }
 
+LatticeView LatticeVolume::view() const {
+  LatticeView v = lattice_->view();
+  v.occupied = occupied_.data();
+  v.zero_slot = zero_slot();
+  v.domain = domain_;
+  return v;
+}
+
 std::size_t LatticeVolume::memory_bytes() const {
   std::size_t n = occupied_.size();
   for (const auto& r : records_) n += r.size() * sizeof(float);
   return n;
+}
+
+GridRecords grid_records(const Medium& medium, const std::vector<SpectralLerp>& lerps, int stride,
+                         int threads) {
+  GridRecords out;
+  const std::optional<GridFrame> frame = medium.grid_frame();
+  if (!frame || !frame->voxels) return out;  // not one grid
+  auto lattice =
+      std::make_unique<NodeLattice>(medium, 0.0, 0.0, static_cast<std::size_t>(kMaxLatticeNodes));
+  const VoxelGrid* grid = LatticeVolume::aligned_grid(medium, *lattice);
+  if (!grid) return out;
+  out.volume = std::make_unique<LatticeVolume>(*lattice, lerps, stride, grid, threads, "clouds");
+  out.lattice = std::move(lattice);
+  return out;
 }
 
 }  // namespace obscura

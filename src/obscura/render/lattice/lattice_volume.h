@@ -2,7 +2,7 @@
 // A voxel grid and, optionally, the light in it, at the nodes of a NodeLattice
 // laid on the grid at its own voxel size, per spectral node of a frame, in the
 // layout the lattice march reads (lattice_march.h): one record of stride()
-// floats per node, its channels
+// floats per node, its channels (record::, lattice_view.h)
 //   [σa, σs, T, σs g, τ_sun, V_sun, c_00, c_1−1, c_10, …]
 // (1/m, 1/m, K, 1/m, optical depth, 0…1, then the radiance cache's spherical-
 // harmonic coefficients). σa, σs and σs g are interpolated linearly in
@@ -20,24 +20,16 @@
 // record, zero_slot(), as the medium is zero there.
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "obscura/core/bbox.h"
 #include "obscura/medium/medium.h"
 #include "obscura/medium/tracking.h"
+#include "obscura/render/lattice/lattice_view.h"
 #include "obscura/render/lattice/node_lattice.h"
 
 namespace obscura {
-
-// Channels of a record.
-namespace record {
-inline constexpr int kSigmaA = 0, kSigmaS = 1, kTemperature = 2, kSigmaSG = 3, kTauSun = 4,
-                     kSunVisibility = 5, kSh = 6;
-// Floats per record: the medium alone, and with the light at `sh_count`
-// coefficients (rounded up to whole groups of four, for SIMD loads).
-inline constexpr int kMediumStride = 4;
-constexpr int light_stride(int sh_count) { return (kSh + sh_count + 3) / 4 * 4; }
-}  // namespace record
 
 class LatticeVolume {
  public:
@@ -76,6 +68,8 @@ class LatticeVolume {
   // the medium is; the march clips its rays to it.
   const BBox3& domain() const { return domain_; }
   std::size_t memory_bytes() const;
+  // The march's view of this volume and its lattice (valid while both live).
+  LatticeView view() const;
 
  private:
   const NodeLattice* lattice_;
@@ -85,5 +79,17 @@ class LatticeVolume {
   std::vector<std::uint8_t> occupied_;
   BBox3 domain_;
 };
+
+// A lattice laid on a cloud that is one voxel grid, at its voxel size, and
+// that grid's records at `lerps` (the medium channels, `stride` floats per
+// record): what emission–absorption marches (and the GPU). Both null when the
+// medium is not one grid that such a lattice reproduces exactly
+// (LatticeVolume::aligned_grid).
+struct GridRecords {
+  std::unique_ptr<NodeLattice> lattice;
+  std::unique_ptr<LatticeVolume> volume;
+};
+GridRecords grid_records(const Medium& medium, const std::vector<SpectralLerp>& lerps, int stride,
+                         int threads);
 
 }  // namespace obscura

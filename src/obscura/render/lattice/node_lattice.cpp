@@ -101,6 +101,21 @@ void NodeLattice::allocate_blocks(const Medium& medium) {
       }
 }
 
+LatticeView NodeLattice::view() const {
+  LatticeView v;
+  v.origin_m = origin_;
+  v.to_lattice_axes = rotation_t_;
+  v.spacing_m = h_;
+  for (int a = 0; a < 3; ++a) {
+    v.dims[a] = dims_[a];
+    v.block_dims[a] = block_dims_[a];
+  }
+  v.block_index = block_index_.data();
+  v.blocks = blocks_.data();
+  v.zero_slot = slot_count();
+  return v;
+}
+
 std::size_t NodeLattice::slot_of(int i, int j, int k) const {
   if (periodic_) {
     i = wrap(i, dims_[0]);

@@ -16,12 +16,13 @@
 #include "obscura/core/mat3.h"
 #include "obscura/core/vec3.h"
 #include "obscura/medium/medium.h"
+#include "obscura/render/lattice/lattice_view.h"
 
 namespace obscura {
 
 class NodeLattice {
  public:
-  static constexpr int kBlock = 8;  // nodes per block side
+  static constexpr int kBlock = LatticeView::kBlock;  // nodes per block side
   static constexpr int kBlockNodes = kBlock * kBlock * kBlock;
 
   // A lattice over `medium` at spacing `spacing_m` (0: the medium's voxel
@@ -77,6 +78,10 @@ class NodeLattice {
   // A world direction in node units per metre.
   Vec3 to_lattice_direction(const Vec3& d) const { return rotation_t_ * d / h_; }
   const Mat3& rotation() const { return rotation_; }
+  // The lattice's part of a LatticeView (lattice_view.h): its placement and
+  // blocks, pointing into this lattice (valid while it lives); the occupancy
+  // and domain are the LatticeVolume's.
+  LatticeView view() const;
 
  private:
   void allocate_blocks(const Medium& medium);

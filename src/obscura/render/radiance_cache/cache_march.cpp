@@ -2,72 +2,39 @@
 
 #include <algorithm>
 #include <array>
-#include <cmath>
-#include <numbers>
 
 #include "obscura/core/check.h"
 #include "obscura/render/emission_absorption/emission_marcher.h"
 #include "obscura/render/lattice/lattice_march.h"
+#include "obscura/render/radiance_cache/cache_source.h"
 
 namespace obscura {
 namespace {
 
-// p_HG(μ) per steradian (medium/phase_function.h has the careful form; here g
-// is clamped to |g| ≤ 0.999999, where this one is exact to rounding).
-inline double hg(double g, double mu) {
-  const double d = 1.0 + g * g - 2.0 * g * mu;
-  return (1.0 - g * g) * (0.25 * std::numbers::inv_pi) / (d * std::sqrt(d));
-}
-
-inline double clamped_g(double g) { return std::clamp(g, -0.999999, 0.999999); }
-
-// What every point of one camera ray shares: the harmonics of the direction
-// the light travels (towards the camera), the sun's cosine with it, and the
-// sun's irradiance at each node of the band.
+// The per-ray light (cache_source.h) and the sun's irradiance at each node
+// of the band, which it points to.
 class RayLight {
  public:
   RayLight(const Scene& scene, const RadianceCache& cache, const Ray& ray,
            const SpectralNodes& nodes)
-      : sh_degree_(cache.sh_degree()) {
-    spherical_harmonics(-ray.direction, y_);
-    mu_sun_ = scene.sun.enabled ? dot(scene.sun.direction(), ray.direction) : 0.0;
+      : light_(ray.direction, scene.sun.enabled, scene.sun.enabled ? scene.sun.direction() : Vec3(),
+               sun_irradiance_.data(), cache.sh_degree()) {
     for (std::size_t j = 0; j < nodes.size(); ++j)
       sun_irradiance_[j] =
           scene.sun.enabled ? scene.sun.irradiance(nodes.nodes()[j].wavelength_um) : 0.0;
+    for (std::size_t j = 0; j < nodes.size(); ++j)
+      planck_[j] = nodes.nodes()[j].planck_table->view();
   }
+  RayLight(const RayLight&) = delete;
+  RayLight& operator=(const RayLight&) = delete;
 
-  // J at node j from the point's g and light channels (`light` from
-  // record::kTauSun on, interpolated). Not clamped at zero: the photon
-  // estimate is linear in the photons, so its noise (which can make a
-  // truncated expansion dip below zero) averages out along the ray.
-  double in_scattered(int j, double g, const float* light) const {
-    static_assert(record::kSunVisibility == record::kTauSun + 1 &&
-                  record::kSh == record::kTauSun + 2);
-    const double tau = light[0], visibility = light[1];
-    double j_in = 0.0;
-    if (visibility > 0.0) j_in += sun_irradiance_[j] * hg(g, mu_sun_) * visibility * std::exp(-tau);
-    return j_in + hg_convolved(light + 2, y_, g, sh_degree_);
-  }
+  const CacheLight& light() const { return light_; }
+  const PlanckTableView* planck() const { return planck_.data(); }
 
  private:
-  int sh_degree_;
-  std::array<double, kMaxShCoefficients> y_;
   std::array<double, kMaxSpectralNodes> sun_irradiance_{};
-  double mu_sun_ = 0.0;
-};
-
-// The lattice march's Source (render/lattice/lattice_march.h).
-struct CacheSource {
-  const RayLight& light;
-  const SpectralNode* nodes;
-  void point(int j, const float* v, double& sigma_t, double& emissivity) const {
-    const double sigma_a = v[record::kSigmaA], sigma_s = v[record::kSigmaS];
-    sigma_t = sigma_a + sigma_s;
-    emissivity = sigma_a != 0.0 ? sigma_a * (*nodes[j].planck_table)(v[record::kTemperature]) : 0.0;
-    if (sigma_s > 0.0)
-      emissivity += sigma_s * light.in_scattered(j, clamped_g(v[record::kSigmaSG] / sigma_s),
-                                                 v + record::kTauSun);
-  }
+  std::array<PlanckTableView, kMaxSpectralNodes> planck_;
+  CacheLight light_;
 };
 
 template <int Stride>
@@ -84,7 +51,7 @@ class CacheInScattering {
  public:
   static constexpr bool kWantsG = true;
 
-  CacheInScattering(const RadianceCache& cache, const RayLight& light, const Ray& ray,
+  CacheInScattering(const RadianceCache& cache, const CacheLight& light, const Ray& ray,
                     const int* record, int nodes)
       : cache_(cache), light_(light), ray_(ray), record_(record), nodes_(nodes) {}
 
@@ -108,13 +75,13 @@ class CacheInScattering {
         for (int i = record::kTauSun; i < count; ++i) v[i] += static_cast<float>(w[c] * r[i]);
       }
       emissivity[j] +=
-          sigma_s[j] * light_.in_scattered(j, clamped_g(g[j]), v.data() + record::kTauSun);
+          sigma_s[j] * light_.in_scattered(j, cache_clamped_g(g[j]), v.data() + record::kTauSun);
     }
   }
 
  private:
   const RadianceCache& cache_;
-  const RayLight& light_;
+  const CacheLight& light_;
   const Ray& ray_;
   const int* record_;
   int nodes_;
@@ -126,7 +93,7 @@ std::uint64_t march_cache_lattice(const Scene& scene, const RadianceCache& cache
                                   const CameraRay& camera, const SpectralNodes& nodes,
                                   const int* record, double* radiance, double* transmittance) {
   const RayLight light(scene, cache, camera.ray, nodes);
-  const CacheSource source{light, nodes.nodes().data()};
+  const CacheSource source{light.planck(), light.light()};
   const int n = static_cast<int>(nodes.size());
   const LatticeVolume& volume = cache.volume();
   switch (volume.stride()) {
@@ -150,7 +117,7 @@ std::uint64_t march_cache_medium(const Scene& scene, const RadianceCache& cache,
                                  const CameraRay& camera, const SpectralNodes& nodes,
                                  const int* record, double* radiance, double* transmittance) {
   const RayLight light(scene, cache, camera.ray, nodes);
-  CacheInScattering in(cache, light, camera.ray, record, static_cast<int>(nodes.size()));
+  CacheInScattering in(cache, light.light(), camera.ray, record, static_cast<int>(nodes.size()));
   EmissionMarcher<CacheInScattering> marcher(nodes, in, radiance, transmittance);
   MarchOptions march;
   march.with_g = true;

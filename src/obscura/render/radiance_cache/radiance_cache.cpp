@@ -104,7 +104,7 @@ std::vector<SpectralLerp> lerps_of(const std::vector<SpectralNode>& nodes) {
 }  // namespace
 
 RadianceCache::RadianceCache(const Scene& scene, const std::vector<SpectralNode>& nodes,
-                             const ProcessGroup& processes)
+                             const ProcessGroup& processes, SunDepths sun_depths)
     : lattice_(*scene.medium, scene.settings.radiance_cache.voxel_m,
                scene.settings.radiance_cache.lateral_period_m,
                static_cast<std::size_t>(kMaxLatticeNodes)),
@@ -113,6 +113,7 @@ RadianceCache::RadianceCache(const Scene& scene, const std::vector<SpectralNode>
       sh_count_(sh_coefficient_count(sh_degree_)),
       spectral_count_(static_cast<int>(scene.medium->wavelengths_um().size())),
       has_sun_(scene.sun.enabled),
+      sun_depths_(sun_depths),
       volume_(lattice_, lerps_of(nodes), record::light_stride(sh_count_),
               LatticeVolume::aligned_grid(*scene.medium, lattice_), scene.settings.threads,
               "render/radiance_cache/voxel_m") {
@@ -158,8 +159,9 @@ void RadianceCache::compute_sun(const Scene& scene, const std::vector<SpectralNo
                             intersect_surfaces(scene.surfaces, ray, near_m,
                                                std::numeric_limits<double>::infinity(), hit);
                         std::fill(tau.begin(), tau.end(), 0.0);
-                        scene.medium->add_optical_depth(
-                            ray, 0.0, std::numeric_limits<double>::infinity(), tau.data());
+                        if (sun_depths_ == SunDepths::kHere)
+                          scene.medium->add_optical_depth(
+                              ray, 0.0, std::numeric_limits<double>::infinity(), tau.data());
                         float* out = sun.data() + slot * per_slot;
                         for (int k = 0; k < spectral_count_; ++k)
                           out[k] = static_cast<float>(tau[k]);

@@ -38,8 +38,13 @@ class RadianceCache {
   // with scene.settings.radiance_cache, seed and threads. The scene needs a
   // medium.
   // `processes` share the photon tracing (render/photon_map/photon_tracing.h).
+  // `sun_depths`: who computes τ_sun, this constructor on the CPU or the
+  // caller afterwards (the GPU's sun kernel, gpu/sun_depth_job.h), which finds
+  // the channel zero and V_sun filled in.
+  enum class SunDepths { kHere, kByCaller };
   RadianceCache(const Scene& scene, const std::vector<SpectralNode>& nodes,
-                const ProcessGroup& processes = single_process());
+                const ProcessGroup& processes = single_process(),
+                SunDepths sun_depths = SunDepths::kHere);
 
   const NodeLattice& lattice() const { return lattice_; }
   int sh_degree() const { return sh_degree_; }
@@ -75,6 +80,7 @@ class RadianceCache {
   const ProcessGroup* processes_;
   int sh_degree_ = 2, sh_count_ = 9, spectral_count_ = 1;
   bool has_sun_ = false;
+  SunDepths sun_depths_ = SunDepths::kHere;
   LatticeVolume volume_;
   std::uint64_t photons_stored_ = 0;
 };

@@ -8,9 +8,11 @@
 // (p(μ) = Σ_l (2l + 1)/(4π) g^l P_l(μ)), convolves it exactly band by band:
 // by the addition theorem P_l(ω·ω') = 4π/(2l + 1) Σ_m Y_lm(ω) Y_lm(ω'),
 //   ∫ p(ω'·ω) L_in(ω') dω' = Σ_l g^l Σ_m Y_lm(ω) c_lm
-// (docs/physics.md, "The radiance cache").
+// (docs/physics.md, "The radiance cache"). Both run on a CUDA device too
+// (core/host_device.h).
 #include <array>
 
+#include "obscura/core/host_device.h"
 #include "obscura/core/vec3.h"
 
 namespace obscura {
@@ -21,7 +23,8 @@ inline constexpr int kMaxShCoefficients = (kMaxShDegree + 1) * (kMaxShDegree + 1
 constexpr int sh_coefficient_count(int degree) { return (degree + 1) * (degree + 1); }
 
 // Y_lm(d) for l ≤ kMaxShDegree, d a unit vector (x, y, z), into y[l² + l + m].
-inline void spherical_harmonics(const Vec3& d, std::array<double, kMaxShCoefficients>& y) {
+OBSCURA_HOST_DEVICE inline void spherical_harmonics(const Vec3& d,
+                                                    std::array<double, kMaxShCoefficients>& y) {
   const double x = d.x, yy = d.y, z = d.z;
   // Normalisation constants of the real harmonics (Sloan 2008, "Stupid
   // Spherical Harmonics Tricks", appendix).
@@ -55,8 +58,9 @@ inline void spherical_harmonics(const Vec3& d, std::array<double, kMaxShCoeffici
 
 // ∫ p_HG(ω'·ω) L(ω') dω' from L's coefficients `c` (degree ≤ `degree`) and
 // the harmonics `y` of ω: Σ_l g^l Σ_m y_lm c_lm.
-inline double hg_convolved(const float* c, const std::array<double, kMaxShCoefficients>& y,
-                           double g, int degree) {
+OBSCURA_HOST_DEVICE inline double hg_convolved(const float* c,
+                                               const std::array<double, kMaxShCoefficients>& y,
+                                               double g, int degree) {
   double result = 0.0, g_l = 1.0;
   for (int l = 0; l <= degree; ++l) {
     double band = 0.0;

@@ -1,0 +1,281 @@
+#pragma once
+// The camera march over a lattice's records (lattice_view.h), written once for
+// the CPU and a CUDA device (core/host_device.h, docs/gpu.md): the lattice's
+// cells along a ray in order, each integrated with the cell quadrature of the
+// medium's own march (render/emission_absorption/cell_quadrature.h) at its
+// entry, middle and exit, the entry reused from the previous cell's exit.
+// Per point the corners' records are interpolated once per spectral node
+// (one record of Stride floats each, not every sample's channels), and a
+// Source turns the interpolated record into σt and the emissivity:
+//
+//   struct Source {
+//     // From record `values` (Stride floats, interpolated at the point) of
+//     // node j: σt (1/m) and the emissivity ε (W m⁻³ sr⁻¹ µm⁻¹: σa B(T),
+//     // plus σs J with in-scattering).
+//     void point(int j, const float* values, double& sigma_t, double& emissivity) const;
+//   };
+//
+// Blocks the lattice does not hold and cells none of whose corners holds
+// medium are skipped; they are zero. The CPU marches every node of a band
+// along one ray (MaxNodes = kMaxSpectralNodes); a device thread marches one
+// node (MaxNodes = 1), with the same arithmetic per node, so its state stays
+// in registers.
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <cstring>
+#include <utility>
+
+#include "obscura/core/host_device.h"
+#include "obscura/core/ray.h"
+#include "obscura/medium/lattice_walker.h"
+#include "obscura/render/emission_absorption/cell_quadrature.h"
+#include "obscura/render/lattice/lattice_view.h"
+
+namespace obscura {
+
+namespace lattice_march_detail {
+
+// The first slots of the 8 blocks at offsets (0|1, 0|1, 0|1) from block
+// `block` (x fastest), `zero` where the lattice does not hold one: a cell's
+// corners lie in them.
+OBSCURA_HOST_DEVICE inline void neighbour_blocks(const LatticeView& lattice,
+                                                 const std::array<int, 3>& block, std::size_t zero,
+                                                 std::array<std::size_t, 8>& first) {
+  const std::int32_t* n = lattice.block_dims;
+  for (int c = 0; c < 8; ++c) {
+    const int bx = block[0] + (c & 1), by = block[1] + (c >> 1 & 1), bz = block[2] + (c >> 2 & 1);
+    const std::size_t s =
+        bx < n[0] && by < n[1] && bz < n[2] ? lattice.block_first_slot(bx, by, bz) : zero;
+    first[c] = s == LatticeView::kNoSlot ? zero : s;
+  }
+}
+
+// The 8 corner slots of the cell whose min corner is at `local` (0…7 per
+// axis) in the block (held by the lattice) whose neighbours are `first`. A corner in a block the
+// lattice does not hold reads the zero record, which every node of such a
+// block is.
+OBSCURA_HOST_DEVICE inline void corner_slots(const std::array<std::size_t, 8>& first,
+                                             std::size_t zero, const std::array<int, 3>& local,
+                                             std::array<std::size_t, 8>& slot) {
+  constexpr int b = LatticeView::kBlock;
+  if (local[0] < b - 1 && local[1] < b - 1 && local[2] < b - 1) {
+    const std::size_t s =
+        first[0] + static_cast<std::size_t>(local[0] + b * (local[1] + b * local[2]));
+    slot = {s, s + 1, s + b, s + b + 1, s + b * b, s + b * b + 1, s + b * b + b, s + b * b + b + 1};
+    return;
+  }
+  for (int c = 0; c < 8; ++c) {
+    const int x = local[0] + (c & 1), y = local[1] + (c >> 1 & 1), z = local[2] + (c >> 2 & 1);
+    const std::size_t base = first[(x >> 3) | (y >> 3) << 1 | (z >> 3) << 2];
+    slot[c] = base == zero ? zero
+                           : base + static_cast<std::size_t>((x & 7) + b * ((y & 7) + b * (z & 7)));
+  }
+}
+
+// Σ_c w_c record_c over the first Count floats of records Stride floats
+// apart, four at a time: GCC/Clang vector extensions on the CPU (SSE on any
+// x86-64), 16-byte loads on a device (records are 16-byte aligned: Stride is
+// a multiple of 4 and device buffers start 256-byte aligned).
+template <int Stride, int Count = Stride>
+OBSCURA_HOST_DEVICE inline void interpolate(const float* records,
+                                            const std::array<std::size_t, 8>& slot,
+                                            const std::array<float, 8>& w, float* out) {
+  static_assert(Stride % 4 == 0 && Count % 4 == 0 && Count <= Stride);
+#if OBSCURA_DEVICE_CODE
+  float4 acc[Count / 4] = {};
+  for (int c = 0; c < 8; ++c) {
+    const float4* r = reinterpret_cast<const float4*>(records + slot[c] * Stride);
+    const float wc = w[c];
+    for (int q = 0; q < Count / 4; ++q) {
+      const float4 v = __ldg(r + q);
+      acc[q].x += wc * v.x;
+      acc[q].y += wc * v.y;
+      acc[q].z += wc * v.z;
+      acc[q].w += wc * v.w;
+    }
+  }
+  for (int q = 0; q < Count / 4; ++q) {
+    out[4 * q] = acc[q].x;
+    out[4 * q + 1] = acc[q].y;
+    out[4 * q + 2] = acc[q].z;
+    out[4 * q + 3] = acc[q].w;
+  }
+#else
+  using Float4 = float __attribute__((vector_size(16)));
+  Float4 acc[Count / 4] = {};
+  for (int c = 0; c < 8; ++c) {
+    const float* r = records + slot[c] * Stride;
+    const Float4 wc = {w[c], w[c], w[c], w[c]};
+    for (int q = 0; q < Count / 4; ++q) {
+      Float4 v;
+      std::memcpy(&v, r + 4 * q, sizeof v);
+      acc[q] += wc * v;
+    }
+  }
+  std::memcpy(out, acc, sizeof acc);
+#endif
+}
+
+// The trilinear weights of the 8 corners of `cell` at lattice point o + t d.
+OBSCURA_HOST_DEVICE inline void corner_weights(const Vec3& o, const Vec3& d, double t,
+                                               const std::array<int, 3>& cell,
+                                               std::array<float, 8>& w) {
+  float f[3];
+  for (int a = 0; a < 3; ++a)
+    f[a] = static_cast<float>(std::clamp(o[a] + t * d[a] - cell[a], 0.0, 1.0));
+  const float x0 = 1 - f[0], y0 = 1 - f[1], z0 = 1 - f[2];
+  w = {x0 * y0 * z0,   f[0] * y0 * z0,   x0 * f[1] * z0,   f[0] * f[1] * z0,
+       x0 * y0 * f[2], f[0] * y0 * f[2], x0 * f[1] * f[2], f[0] * f[1] * f[2]};
+}
+
+// Calls visit(cell, t0, t1, slot) for the cells of the lattice along the
+// lattice ray o + t d, t in [t_begin, t_end], in order, that have some corner
+// holding medium and a positive length: first the 8³ blocks the lattice
+// holds, then their cells.
+template <class Visit>
+OBSCURA_ALWAYS_INLINE OBSCURA_HOST_DEVICE inline void for_each_cell(const LatticeView& lattice,
+                                                                    const Vec3& o, const Vec3& dir,
+                                                                    double t_begin, double t_end,
+                                                                    Visit&& visit) {
+  constexpr int kBlock = LatticeView::kBlock;
+  const std::size_t zero_slot = lattice.zero_slot;
+  const std::int32_t* dims = lattice.dims;
+  const std::int32_t* block_dims = lattice.block_dims;
+  std::array<std::size_t, 8> first;
+  std::array<std::size_t, 8> slot;
+  LatticeWalker blocks(o, dir, t_begin, t_end, kBlock, {0, 0, 0},
+                       {block_dims[0] - 1, block_dims[1] - 1, block_dims[2] - 1});
+  std::array<int, 3> block, cell;
+  double tb0, tb1, t0, t1;
+  while (blocks.next(block, tb0, tb1)) {
+    if (lattice.block_first_slot(block[0], block[1], block[2]) == LatticeView::kNoSlot)
+      continue;  // no medium within a node of it
+    neighbour_blocks(lattice, block, zero_slot, first);
+    std::array<int, 3> lo, hi;
+    bool has_cells = true;
+    for (int a = 0; a < 3; ++a) {
+      lo[a] = block[a] * kBlock;
+      hi[a] = std::min(lo[a] + kBlock - 1, dims[a] - 2);
+      has_cells = has_cells && hi[a] >= lo[a];
+    }
+    if (!has_cells) continue;
+    LatticeWalker walker(o, dir, tb0, tb1, 1.0, lo, hi);
+    while (walker.next(cell, t0, t1)) {
+      if (!(t1 > t0)) continue;
+      corner_slots(first, zero_slot, {cell[0] - lo[0], cell[1] - lo[1], cell[2] - lo[2]}, slot);
+      bool any = false;
+      for (int c = 0; c < 8; ++c) any = any || lattice.occupied[slot[c]] != 0;
+      if (any) visit(cell, t0, t1, slot);
+    }
+  }
+}
+
+}  // namespace lattice_march_detail
+
+// Adds to radiance[j] the radiance emitted and scattered towards the ray's
+// origin over [0, t_max] and multiplies transmittance[j] by the line's e^{−τ},
+// for `nodes` (≤ MaxNodes) spectral nodes whose records start at records[j].
+// `lray` is in lattice coordinates (LatticeView::to_lattice, to_lattice_direction),
+// its parameter in metres. Returns the cells visited.
+template <int Stride, int MaxNodes, class Source>
+OBSCURA_HOST_DEVICE std::uint64_t march_lattice_ray(const LatticeView& lattice,
+                                                    const float* const* records, int nodes,
+                                                    const Ray& lray, double t_max,
+                                                    const Source& source, double* radiance,
+                                                    double* transmittance) {
+  namespace d = lattice_march_detail;
+  double t_begin = 0.0, t_end = t_max;
+  if (!lattice.domain.intersect(lray, t_begin, t_end) || !(t_end > t_begin)) return 0;
+  const int n = MaxNodes == 1 ? 1 : nodes;  // a constant for a device thread's one node
+
+  // σt and ε at the cell's entry, middle and exit, per node: pointers into
+  // `values_at`, the entry and exit swapped when the exit is reused (a
+  // device thread's one node copies instead, so that it stays in registers).
+  double values_at[6][MaxNodes];
+  double* sigma_t[3] = {values_at[0], values_at[1], values_at[2]};
+  double* emissivity[3] = {values_at[3], values_at[4], values_at[5]};
+  std::array<float, 8> w;
+  float values[Stride];
+  std::uint64_t cells = 0;
+  double previous_end = -1.0;
+  const Vec3& o = lray.origin;
+  const Vec3& dir = lray.direction;
+  d::for_each_cell(lattice, o, dir, t_begin, t_end,
+                   [&](const std::array<int, 3>& cell, double t0, double t1,
+                       const std::array<std::size_t, 8>& slot) OBSCURA_ALWAYS_INLINE {
+                     ++cells;
+                     const bool reuse = t0 == previous_end;
+                     if (reuse) {
+                       if constexpr (MaxNodes == 1) {
+                         sigma_t[0][0] = sigma_t[2][0];
+                         emissivity[0][0] = emissivity[2][0];
+                       } else {
+                         std::swap(sigma_t[0], sigma_t[2]);
+                         std::swap(emissivity[0], emissivity[2]);
+                       }
+                     }
+                     const double ts[3] = {t0, 0.5 * (t0 + t1), t1};
+                     for (int p = reuse ? 1 : 0; p < 3; ++p) {
+                       d::corner_weights(o, dir, ts[p], cell, w);
+                       for (int j = 0; j < n; ++j) {
+                         d::interpolate<Stride>(records[j], slot, w, values);
+                         source.point(j, values, sigma_t[p][j], emissivity[p][j]);
+                       }
+                     }
+                     add_cell(t1 - t0, n, sigma_t, emissivity, radiance, transmittance);
+                     previous_end = t1;
+                   });
+  return cells;
+}
+
+// The same for a world ray (its direction unit length, t_max in metres).
+template <int Stride, int MaxNodes, class Source>
+OBSCURA_HOST_DEVICE std::uint64_t march_lattice_view(const LatticeView& lattice,
+                                                     const float* const* records, int nodes,
+                                                     const Ray& ray, double t_max,
+                                                     const Source& source, double* radiance,
+                                                     double* transmittance) {
+  const Ray lray{lattice.to_lattice(ray.origin), lattice.to_lattice_direction(ray.direction)};
+  return march_lattice_ray<Stride, MaxNodes>(lattice, records, nodes, lray, t_max, source, radiance,
+                                             transmittance);
+}
+
+// The optical depth ∫ σt along the lattice ray over [0, t_max] (σt = σa + σs
+// of the records of Stride floats at `records`): Simpson's rule on each cell's
+// entry, middle and exit, exact for the trilinear σt, a cubic along the line,
+// over the same cells as the march. Reads only the medium channels, so the
+// light channels of the same records may be written meanwhile (the sun's
+// optical depths, gpu/sun_depth_job.h).
+template <int Stride>
+OBSCURA_HOST_DEVICE double lattice_optical_depth(const LatticeView& lattice, const float* records,
+                                                 const Ray& lray, double t_max) {
+  namespace d = lattice_march_detail;
+  double t_begin = 0.0, t_end = t_max;
+  if (!lattice.domain.intersect(lray, t_begin, t_end) || !(t_end > t_begin)) return 0.0;
+  double tau = 0.0;
+  std::array<float, 8> w;
+  float values[record::kMediumStride];
+  const Vec3& o = lray.origin;
+  const Vec3& dir = lray.direction;
+  double sigma_t[3] = {0.0, 0.0, 0.0};  // at the cell's entry, middle and exit
+  double previous_end = -1.0;
+  d::for_each_cell(lattice, o, dir, t_begin, t_end,
+                   [&](const std::array<int, 3>& cell, double t0, double t1,
+                       const std::array<std::size_t, 8>& slot) OBSCURA_ALWAYS_INLINE {
+                     const bool reuse = t0 == previous_end;
+                     if (reuse) sigma_t[0] = sigma_t[2];
+                     const double ts[3] = {t0, 0.5 * (t0 + t1), t1};
+                     for (int p = reuse ? 1 : 0; p < 3; ++p) {
+                       d::corner_weights(o, dir, ts[p], cell, w);
+                       d::interpolate<Stride, record::kMediumStride>(records, slot, w, values);
+                       sigma_t[p] =
+                           static_cast<double>(values[record::kSigmaA]) + values[record::kSigmaS];
+                     }
+                     tau += (t1 - t0) / 6.0 * (sigma_t[0] + 4.0 * sigma_t[1] + sigma_t[2]);
+                     previous_end = t1;
+                   });
+  return tau;
+}
+
+}  // namespace obscura

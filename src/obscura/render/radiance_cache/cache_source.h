@@ -1,0 +1,79 @@
+#pragma once
+// The radiance cache's source for the lattice march
+// (render/lattice/lattice_view_march.h; docs/physics.md, "The radiance
+// cache"): σt and ε = σa B(T) + σs J, with the in-scattered radiance
+//   J(x, ω) = E_sun p_HG(ω_sun·ω) V_sun e^{−τ_sun(x)} + Σ_l g^l Σ_m Y_lm(ω) c_lm(x)
+// from the record's light channels, g = (σs g)/σs. Plain data, so that a
+// CUDA device runs it too (docs/gpu.md); the CPU's march over the medium's
+// cells (cache_march.cpp) reads the same CacheLight.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numbers>
+
+#include "obscura/core/host_device.h"
+#include "obscura/core/planck_table.h"
+#include "obscura/core/vec3.h"
+#include "obscura/render/lattice/lattice_view.h"
+#include "obscura/render/radiance_cache/spherical_harmonics.h"
+
+namespace obscura {
+
+// p_HG(μ) per steradian (medium/phase_function.h has the careful form; here g
+// is clamped to |g| ≤ 0.999999, where this one is exact to rounding).
+OBSCURA_HOST_DEVICE inline double cache_hg(double g, double mu) {
+  const double d = 1.0 + g * g - 2.0 * g * mu;
+  return (1.0 - g * g) * (0.25 * std::numbers::inv_pi) / (d * std::sqrt(d));
+}
+
+OBSCURA_HOST_DEVICE inline double cache_clamped_g(double g) {
+  return std::clamp(g, -0.999999, 0.999999);
+}
+
+// What every point of one camera ray shares: the harmonics of the direction
+// the light travels (towards the camera), the sun's cosine with it, and the
+// sun's irradiance at each node of the march.
+struct CacheLight {
+  std::array<double, kMaxShCoefficients> y{};
+  double mu_sun = 0.0;
+  const double* sun_irradiance = nullptr;  // per node j, W m⁻² µm⁻¹ (0 without a sun)
+  int sh_degree = 0;
+
+  // For a camera ray along unit `direction`; `to_sun` is the unit direction
+  // towards the sun when `sun`.
+  OBSCURA_HOST_DEVICE CacheLight(const Vec3& direction, bool sun, const Vec3& to_sun,
+                                 const double* irradiance, int degree)
+      : mu_sun(sun ? dot(to_sun, direction) : 0.0), sun_irradiance(irradiance), sh_degree(degree) {
+    spherical_harmonics(-direction, y);
+  }
+
+  // J at node j from the point's g and light channels (`light` from
+  // record::kTauSun on, interpolated). Not clamped at zero: the photon
+  // estimate is linear in the photons, so its noise (which can make a
+  // truncated expansion dip below zero) averages out along the ray.
+  OBSCURA_HOST_DEVICE double in_scattered(int j, double g, const float* light) const {
+    static_assert(record::kSunVisibility == record::kTauSun + 1 &&
+                  record::kSh == record::kTauSun + 2);
+    const double tau = light[0], visibility = light[1];
+    double j_in = 0.0;
+    if (visibility > 0.0)
+      j_in += sun_irradiance[j] * cache_hg(g, mu_sun) * visibility * std::exp(-tau);
+    return j_in + hg_convolved(light + 2, y, g, sh_degree);
+  }
+};
+
+struct CacheSource {
+  const PlanckTableView* planck;  // per node j of the march
+  const CacheLight& light;
+
+  OBSCURA_HOST_DEVICE void point(int j, const float* v, double& sigma_t, double& emissivity) const {
+    const double sigma_a = v[record::kSigmaA], sigma_s = v[record::kSigmaS];
+    sigma_t = sigma_a + sigma_s;
+    emissivity = sigma_a != 0.0 ? sigma_a * planck[j](v[record::kTemperature]) : 0.0;
+    if (sigma_s > 0.0)
+      emissivity += sigma_s * light.in_scattered(j, cache_clamped_g(v[record::kSigmaSG] / sigma_s),
+                                                 v + record::kTauSun);
+  }
+};
+
+}  // namespace obscura
