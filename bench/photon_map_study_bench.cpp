@@ -2,7 +2,8 @@
 // path-traced reference versus wall time, photon map against path tracer, on
 // the two study scenes (scene/example_scenes.h: the demo puff in sunlight at
 // 0.55 µm, multiple scattering dominating; and at 10 µm, emission dominating),
-// and the photon map's error versus photon count and k. Usage:
+// the photon map's error versus photon count and k, and the radiance cache's
+// versus photon count. Usage:
 //   bench_photon_map_study [--width 64] [--height 48] [--reference-spp 1024]
 //                          [--scene visible|lwir|both] [--threads N] [--csv FILE] [--plot FILE.png]
 // Prints one row per render; --csv writes them, --plot draws relative RMSE
@@ -70,7 +71,8 @@ int main(int argc, char** argv) {
   int width = 64, height = 48, reference_spp = 1024, threads = 0;
   std::string which = "both", csv, plot_path;
   LinePlot plot;
-  plot.title = "Photon map vs path tracer: error against a converged path-traced image";
+  plot.title =
+      "Photon map and radiance cache vs path tracer: error against a converged path-traced image";
   plot.x = {"wall time (s)", true, std::nullopt, std::nullopt};
   plot.y = {"relative RMSE", true, std::nullopt, std::nullopt};
   for (int i = 1; i + 1 < argc; i += 2) {
@@ -157,6 +159,24 @@ int main(int argc, char** argv) {
           }
         }
       plot.series.push_back(pm_series);
+    }
+    // The radiance cache (its own default settings), by photons per node.
+    Scene rc = make_study_scene(s, width, height, RenderMethod::kRadianceCache);
+    for (int spp : {1, 4}) {
+      PlotSeries rc_series{
+          name + ": radiance cache, 2.5e4–1.6e6 photons, " + std::to_string(spp) + " spp",
+          {},
+          {},
+          PlotSeries::Style::kLineAndMarkers};
+      for (long long photons : {25000LL, 100000LL, 400000LL, 1600000LL}) {
+        rc.settings.samples_per_pixel = spp;
+        rc.settings.radiance_cache.photons_per_node = photons;
+        const Result r = render(rc, threads, 7);
+        row("radiance-cache", spp, photons, 0, r);
+        rc_series.x.push_back(r.seconds);
+        rc_series.y.push_back(relative_rmse(r.radiance, ref.radiance));
+      }
+      plot.series.push_back(rc_series);
     }
   }
   if (!plot_path.empty()) write_line_plot_png(plot_path, plot);

@@ -1,9 +1,11 @@
 // Where a frame of `make demo` spends its time (docs/performance.md): the
 // smoke-screen cloud is prepared once (dispersion model + optics →
 // keyframes), then at each time the scene is staged and each sensor (one band
-// each in the demo) rendered with the photon map. Prints, per band, the wall
-// time per frame and its share in staging, photon tracing, kd-tree building
-// and ray marching, plus the one-off preparation. Nothing asserted.
+// each in the demo) rendered, with the photon map unless --method says
+// otherwise. Prints, per band, the wall time per frame and its share in
+// staging, photon tracing, building (the photon map's kd-tree; the radiance
+// cache's splatting and sun depths) and
+// ray marching, plus the one-off preparation. Nothing asserted.
 //   bench_screening_demo [--scene examples/demo/scene.json]
 //                        [--prepare examples/smoke-screen/prepare.json]
 //                        [--times 0:30:6] [--threads 0]
@@ -159,7 +161,7 @@ int main(int argc, char** argv) {
         prepare_s, report.seconds_concentrations, report.seconds_optics, report.seconds_keyframes,
         report.keyframes.size());
     std::printf("%-26s %10s %9s %9s %9s %9s\n", "sensor (band)", "s/frame", "staging", "tracing",
-                "kd-tree", "marching");
+                "building", "marching");
     Totals all;
     for (const std::string& label : order) {
       const Totals& t = per_band[label];

@@ -90,7 +90,7 @@ TEST_F(RenderResumeTest, ASequenceStoppedBySigtermResumesToTheUninterruptedOutpu
   const pid_t child = fork();
   ASSERT_GE(child, 0);
   if (child == 0) {
-    const std::string cmd = std::string(OBSCURA_CLI_PATH) + " " + args + " >" +
+    const std::string cmd = testing::cli_path() + " " + args + " >" +
                             (dir_ / "stdout.txt").string() + " 2>" + (dir_ / "stderr.txt").string();
     execl("/bin/sh", "sh", "-c", ("exec " + cmd).c_str(), static_cast<char*>(nullptr));
     _exit(127);

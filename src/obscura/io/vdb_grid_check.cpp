@@ -104,7 +104,7 @@ class FloatTreeCheck {
       if ((c & static_cast<std::int32_t>(FloatUpper::DIM - 1)) != 0)
         throw r_.error(part, fmt::format("a root entry at ({}, {}, {}), off the {}-voxel lattice "
                                          "of its nodes: the file is corrupt",
-                                         o[0], o[1], o[2], FloatUpper::DIM));
+                                         o[0], o[1], o[2], static_cast<int>(FloatUpper::DIM)));
     if (!origins.insert(o).second)
       throw r_.error(part, fmt::format("two root entries at ({}, {}, {}): the file is corrupt",
                                        o[0], o[1], o[2]));
