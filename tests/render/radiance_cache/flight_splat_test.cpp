@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -15,6 +16,7 @@
 #include "obscura/medium/grid_medium.h"
 #include "obscura/render/photon_map/photon_tracing.h"
 #include "obscura/render/radiance_cache/spherical_harmonics.h"
+#include "support/thread_process_group.h"
 
 namespace obscura {
 namespace {
@@ -84,7 +86,7 @@ TEST(FlightSplat, EachNodeGetsTheKernelIntegralAlongTheFlight) {
   }
 }
 
-TEST(FlightSplat, TheSumsDoNotDependOnTheThreadCount) {
+TEST(FlightSplat, TheSumsDoNotDependOnTheThreadOrProcessCount) {
   const Fixture f;
   std::vector<PhotonFlight> flights;
   Rng rng(8, 0);
@@ -102,6 +104,21 @@ TEST(FlightSplat, TheSumsDoNotDependOnTheThreadCount) {
   splat_flights(f.volume, 0, flights, 3, 1, one);
   splat_flights(f.volume, 0, flights, 3, 2, two);
   EXPECT_EQ(0, std::memcmp(one.data(), two.data(), one.size() * sizeof(double)));
+  EXPECT_GT(std::count_if(one.begin(), one.end(), [](double v) { return v != 0.0; }), 1000);
+  // Ranks share the slabs and exchange their sums: every rank ends with the
+  // bits of one process (the 12 node layers make 3 slabs, dealt unevenly).
+  for (const int ranks : {2, 3, 5}) {
+    std::vector<std::vector<double>> by_rank(static_cast<std::size_t>(ranks));
+    testing::run_ranks(ranks, [&](const ProcessGroup& processes) {
+      std::vector<double> sum(one.size(), 0.0);
+      splat_flights(f.volume, 0, flights, 3, 1, sum, processes);
+      by_rank[static_cast<std::size_t>(processes.rank())] = std::move(sum);
+    });
+    for (int r = 0; r < ranks; ++r)
+      EXPECT_EQ(0, std::memcmp(one.data(), by_rank[static_cast<std::size_t>(r)].data(),
+                               one.size() * sizeof(double)))
+          << ranks << " ranks, rank " << r;
+  }
 }
 
 // On the same walks (flights do not change the random numbers drawn), the

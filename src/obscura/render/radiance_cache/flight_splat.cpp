@@ -5,8 +5,10 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <string>
 #include <utility>
 
+#include "obscura/core/byte_stream.h"
 #include "obscura/core/check.h"
 #include "obscura/core/parallel.h"
 #include "obscura/medium/lattice_walker.h"
@@ -94,10 +96,42 @@ class CellCorners {
   std::array<std::size_t, 8> first_{};
 };
 
+// Every process sends the sums of its slabs' nodes (slots in increasing
+// order) and takes the others': afterwards all hold every slab's sums.
+void share_slabs(const NodeLattice& lattice, int slabs, int count, const ProcessGroup& processes,
+                 std::vector<double>& sum) {
+  const auto rank = static_cast<std::size_t>(processes.rank()),
+             ranks = static_cast<std::size_t>(processes.size());
+  std::vector<std::vector<std::size_t>> slots_of(ranks);
+  for (std::size_t slot = 0; slot < lattice.slot_count(); ++slot) {
+    if (!lattice.slot_inside(slot)) continue;
+    const int s = lattice.slot_node(slot)[2] / kSlabLayers;
+    if (s < slabs) slots_of[static_cast<std::size_t>(s) % ranks].push_back(slot);
+  }
+  const auto n = static_cast<std::size_t>(count);
+  std::vector<double> mine;
+  mine.reserve(slots_of[rank].size() * n);
+  for (const std::size_t slot : slots_of[rank])
+    mine.insert(mine.end(), sum.begin() + slot * n, sum.begin() + (slot + 1) * n);
+  ByteWriter out;
+  out.put_vector(mine);
+  const std::vector<std::string> all = processes.all_gather(out.take());
+  for (std::size_t r = 0; r < ranks; ++r) {
+    if (r == rank) continue;
+    ByteReader in(all[r]);
+    const std::vector<double> theirs = in.get_vector<double>();
+    OBSCURA_CHECK(theirs.size() == slots_of[r].size() * n);
+    for (std::size_t i = 0; i < slots_of[r].size(); ++i)
+      std::copy(theirs.begin() + i * n, theirs.begin() + (i + 1) * n,
+                sum.begin() + slots_of[r][i] * n);
+  }
+}
+
 }  // namespace
 
 void splat_flights(const LatticeVolume& volume, int node, const std::vector<PhotonFlight>& flights,
-                   int sh_degree, int threads, std::vector<double>& sum) {
+                   int sh_degree, int threads, std::vector<double>& sum,
+                   const ProcessGroup& processes) {
   OBSCURA_CHECK(volume.has_medium());
   const NodeLattice& lattice = volume.lattice();
   const int count = sh_coefficient_count(sh_degree);
@@ -109,6 +143,11 @@ void splat_flights(const LatticeVolume& volume, int node, const std::vector<Phot
   const float* records = volume.records(node);
   const std::size_t stride = static_cast<std::size_t>(volume.stride());
 
+  // This process's slabs: s ≡ rank (mod ranks).
+  const auto rank = static_cast<std::size_t>(processes.rank()),
+             ranks = static_cast<std::size_t>(processes.size());
+  const auto mine = [&](int s) { return static_cast<std::size_t>(s) % ranks == rank; };
+
   // Which flights reach which slab: the node layers of the cells it crosses.
   std::vector<std::vector<std::uint32_t>> reach(static_cast<std::size_t>(slabs));
   OBSCURA_CHECK(flights.size() < std::numeric_limits<std::uint32_t>::max());
@@ -119,10 +158,13 @@ void splat_flights(const LatticeVolume& volume, int node, const std::vector<Phot
     const int lo = std::clamp(static_cast<int>(std::floor(std::min(za, zb))), 0, dims[2] - 2);
     const int hi = std::clamp(static_cast<int>(std::floor(std::max(za, zb))), 0, dims[2] - 2) + 1;
     for (int s = lo / kSlabLayers; s <= std::min(hi / kSlabLayers, slabs - 1); ++s)
-      reach[static_cast<std::size_t>(s)].push_back(static_cast<std::uint32_t>(i));
+      if (mine(s)) reach[static_cast<std::size_t>(s)].push_back(static_cast<std::uint32_t>(i));
   }
 
-  parallel_for(static_cast<std::size_t>(slabs), threads, [&](std::size_t s) {
+  const std::size_t own = static_cast<std::size_t>(slabs) / ranks +
+                          (rank < static_cast<std::size_t>(slabs) % ranks ? 1 : 0);
+  parallel_for(own, threads, [&](std::size_t task) {
+    const std::size_t s = task * ranks + rank;
     const int z0 = static_cast<int>(s) * kSlabLayers, z1 = std::min(z0 + kSlabLayers, dims[2]);
     std::array<double, kMaxShCoefficients> y;
     std::array<std::size_t, 8> slot;
@@ -205,6 +247,7 @@ void splat_flights(const LatticeVolume& volume, int node, const std::vector<Phot
       for (int c = 0; c < 8; ++c) flush(c);
     }
   });
+  if (ranks > 1) share_slabs(lattice, slabs, count, processes, sum);
 }
 
 }  // namespace obscura

@@ -18,11 +18,14 @@
 // integrated by three-point Gauss–Legendre in t (exact where σs is constant,
 // degree 6 otherwise: a relative error of order (Δσs/σs)² 10⁻⁴ over a cell).
 //
-// Deterministic and independent of the thread count: the lattice is cut
-// into fixed slabs of node layers along its z axis, each summed by one task
-// over the flights that reach it, in their stored order.
+// Deterministic and independent of the thread and process counts: the
+// lattice is cut into fixed slabs of node layers along its z axis, each
+// summed by one task over the flights that reach it, in their stored order.
+// Processes share the slabs (slab s on rank s mod N) and then exchange their
+// slabs' sums, so each holds the bits one process would have made alone.
 #include <vector>
 
+#include "obscura/core/process_group.h"
 #include "obscura/render/lattice/lattice_volume.h"
 #include "obscura/render/photon_map/photon.h"
 
@@ -30,8 +33,10 @@ namespace obscura {
 
 // Adds every flight's contributions for spectral node `node` (records
 // volume.records(node), which must hold the medium) to `sum`: per slot
-// sh_coefficient_count(sh_degree) values.
+// sh_coefficient_count(sh_degree) values. Every process of `processes` must
+// call it with the same flights (a collective).
 void splat_flights(const LatticeVolume& volume, int node, const std::vector<PhotonFlight>& flights,
-                   int sh_degree, int threads, std::vector<double>& sum);
+                   int sh_degree, int threads, std::vector<double>& sum,
+                   const ProcessGroup& processes = single_process());
 
 }  // namespace obscura

@@ -301,7 +301,8 @@ void RadianceCache::splat(const Scene& scene, const SpectralNode& node, int inde
   const std::size_t slots = lattice_.slot_count();
   std::vector<double> sum(slots * sh_count_, 0.0);
   if (tracing.flights)
-    splat_flights(volume_, index, traced.flights, sh_degree_, scene.settings.threads, sum);
+    splat_flights(volume_, index, traced.flights, sh_degree_, scene.settings.threads, sum,
+                  *processes_);
   const int r = settings.kernel_radius_nodes;
   const double h = lattice_.spacing_m();
   const double volume = std::pow(r * h, 3);  // the kernel's normalisation (r h)³
