@@ -40,6 +40,15 @@ class VdbDensityFile : public testing::TempDirTest {
                        testing::tool_velocity(xf, box)});
     return p;
   }
+  // A density grid of 0.25 m voxels with two blobs 40000 voxels apart, far
+  // from the index origin.
+  static openvdb::FloatGrid::Ptr two_far_blobs() {
+    auto density = tool_grid("density", tool_transform(0.25),
+                             CoordBBox(Coord(-2000, 500, 900), Coord(-1997, 503, 903)), density_at);
+    testing::add_blob(*density, CoordBBox(Coord(38000, 502, 900), Coord(38003, 505, 901)),
+                      density_at);
+    return density;
+  }
   std::string error_of(const std::filesystem::path& p, const std::string& density = "density",
                        const std::string& temperature = "") {
     const InputError e = expect_input_error([&] { read_vdb_density(p, density, temperature); });
@@ -83,13 +92,8 @@ TEST_F(VdbDensityFile, WithoutATemperatureGridOnlyTheDensityIsRead) {
 TEST_F(VdbDensityFile, ASparseTreeIsReadOverItsActiveBoxNotItsIndexSpace) {
   // Two blobs 40000 voxels apart, far from the index origin: the dense box
   // spans the blobs (the gap between them is zero), nothing else.
-  const auto xf = tool_transform(0.25);
-  auto density = tool_grid("density", xf, CoordBBox(Coord(-2000, 500, 900), Coord(-1997, 503, 903)),
-                           density_at);
-  testing::add_blob(*density, CoordBBox(Coord(38000, 502, 900), Coord(38003, 505, 901)),
-                    density_at);
   const auto p = dir_ / "sparse.vdb";
-  write_tool_vdb(p, {density});
+  write_tool_vdb(p, {two_far_blobs()});
   const VdbDensityVolume v = read_vdb_density(p, "density", "");
   EXPECT_EQ(v.dims, (GridDims{40004, 6, 4}));
   EXPECT_EQ(v.index_min[0], -2000);
@@ -108,6 +112,59 @@ TEST_F(VdbDensityFile, ASparseTreeIsReadOverItsActiveBoxNotItsIndexSpace) {
   const std::string e = error_of(p);
   reset_memory_limit();
   EXPECT_TRUE(contains(e, "density: the active bounding box of 40004x6x4 voxels")) << e;
+}
+
+TEST_F(VdbDensityFile, FarClustersAreReadAsPartsWithABorderOfBackground) {
+  // The same two blobs 40000 voxels apart: in parts, each blob's box and one
+  // voxel of background around it, not the 40004-voxel box between them.
+  const auto xf = tool_transform(0.25);
+  const openvdb::FloatGrid::Ptr density = two_far_blobs();
+  const auto p = dir_ / "sparse.vdb";
+  write_tool_vdb(p, {density});
+  const std::vector<VdbDensityVolume> parts = read_vdb_density_parts(p, "density", "");
+  ASSERT_EQ(parts.size(), 2u);
+  const int lows[2][3] = {{-2001, 499, 899}, {37999, 501, 899}};
+  const GridDims dims[2] = {{6, 6, 6}, {6, 6, 4}};
+  for (int n = 0; n < 2; ++n) {
+    const VdbDensityVolume& v = parts[static_cast<std::size_t>(n)];
+    EXPECT_EQ(v.dims, dims[n]) << n;
+    for (int a = 0; a < 3; ++a) EXPECT_EQ(v.index_min[a], lows[n][a]) << n;
+    EXPECT_FALSE(v.empty);
+    EXPECT_TRUE(v.temperature.empty());
+    // Every voxel is the grid's own value there (background 0 on the border).
+    const openvdb::FloatGrid::ConstAccessor acc = density->getConstAccessor();
+    for (int k = 0; k < v.dims.nz; ++k)
+      for (int j = 0; j < v.dims.ny; ++j)
+        for (int i = 0; i < v.dims.nx; ++i) {
+          const Coord c(lows[n][0] + i, lows[n][1] + j, lows[n][2] + k);
+          ASSERT_EQ(v.density[static_cast<std::size_t>(i + v.dims.nx * (j + v.dims.ny * k))],
+                    acc.getValue(c))
+              << c;
+        }
+    // The corner of its lowest voxel, half a voxel below where OpenVDB centres it.
+    const openvdb::Vec3d corner =
+        xf->indexToWorld(openvdb::Vec3d(lows[n][0], lows[n][1], lows[n][2]) - 0.5);
+    for (int a = 0; a < 3; ++a) EXPECT_NEAR(v.placement.origin_m[a], corner[a], 1e-9);
+  }
+}
+
+TEST_F(VdbDensityFile, ACompactOrNearClusterIsOneBox) {
+  // One blob, or two whose boxes would hold over half of the box around
+  // both: the one box of read_vdb_density.
+  const auto xf = tool_transform();
+  auto density = tool_grid("density", xf, CoordBBox(Coord(0), Coord(9)), density_at);
+  const auto one = dir_ / "one.vdb";
+  write_tool_vdb(one, {density});
+  std::vector<VdbDensityVolume> parts = read_vdb_density_parts(one, "density", "");
+  ASSERT_EQ(parts.size(), 1u);
+  EXPECT_EQ(parts[0].dims, (GridDims{10, 10, 10}));
+  EXPECT_EQ(parts[0].density, read_vdb_density(one, "density", "").density);
+  testing::add_blob(*density, CoordBBox(Coord(30, 0, 0), Coord(39, 9, 9)), density_at);
+  const auto near = dir_ / "near.vdb";
+  write_tool_vdb(near, {density});
+  parts = read_vdb_density_parts(near, "density", "");
+  ASSERT_EQ(parts.size(), 1u);  // 2 × 12³ of 40 × 10 × 10 voxels: over half
+  EXPECT_EQ(parts[0].dims, (GridDims{40, 10, 10}));
 }
 
 TEST_F(VdbDensityFile, HalfFloatGridsReadAsTheirHalfValues) {

@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
+#include <tuple>
 
 #include "obscura/io/vdb_keyframe.h"
 #include "obscura/medium/grid_medium.h"
@@ -217,6 +218,58 @@ TEST_F(VdbDensityCloud, ANegativeTemperatureNamesTheVoxel) {
   const std::string e = error_of(c);
   EXPECT_TRUE(contains(e, "explosion.vdb: temperature voxel (-6,4,0): value 0.036"));
   EXPECT_TRUE(contains(e, "which must be finite and >= 0")) << e;
+}
+
+TEST_F(VdbDensityCloud, FarClustersBecomeOneGridEachWithTheSameMedium) {
+  // Two puffs 300 voxels apart: two grids of their own size, and the medium
+  // they make is the one box around both (read whole) wherever both define it.
+  const auto xf = tool_transform(0.5, {0.0, -30.0, 0.0});
+  const auto puff = [](int i, int j, int k) { return smoke(i, j, k); };
+  auto density = tool_grid("density", xf, CoordBBox(Coord(-6, 4, 0), Coord(5, 11, 9)), puff);
+  testing::add_blob(*density, CoordBBox(Coord(300, 4, 0), Coord(307, 9, 5)), puff);
+  write_tool_vdb(dir_ / "two.vdb", {density});
+  nlohmann::json c = cloud("two.vdb");
+  c.erase("temperature_grid");
+  c.erase("temperature_scale");
+  c.erase("temperature_offset");
+  const Scene s = load(c);
+  ASSERT_EQ(s.static_clouds.size(), 2u);
+  const VoxelGrid& a = dynamic_cast<const GridMedium&>(*s.static_clouds[0]).grid();
+  const VoxelGrid& b = dynamic_cast<const GridMedium&>(*s.static_clouds[1]).grid();
+  EXPECT_EQ(a.dims(), (GridDims{14, 10, 12}));
+  EXPECT_EQ(b.dims(), (GridDims{10, 8, 8}));
+  VdbDensityMapping m;
+  m.density_scale_g_m3 = 0.75;
+  std::vector<std::string> warnings;
+  const SpeciesOptics optics =
+      material_species_optics(load_material_by_name("soot"), kWavelengths, 0, 0, warnings);
+  const GridMedium whole(
+      std::make_shared<VoxelGrid>(read_vdb_density_cloud(dir_ / "two.vdb", m, optics)));
+  EXPECT_EQ(whole.grid().dims(), (GridDims{314, 8, 10}));
+  // Points over each puff's voxel centres and between them.
+  MediumPoint pw, pp;
+  int dense = 0;
+  for (const auto& [cloud, lo, hi] :
+       {std::tuple{s.static_clouds[0].get(), Coord(-6, 4, 0), Coord(5, 11, 9)},
+        std::tuple{s.static_clouds[1].get(), Coord(300, 4, 0), Coord(307, 9, 5)}})
+    for (double t = 0.0; t <= 1.0; t += 0.0625) {
+      const openvdb::Vec3d i(lo.x() + t * (hi.x() - lo.x()), lo.y() + t * t * (hi.y() - lo.y()),
+                             lo.z() + (1 - t) * (hi.z() - lo.z()));
+      const openvdb::Vec3d w = xf->indexToWorld(i);
+      const Vec3 x(w.x(), w.y(), w.z());
+      whole.coefficients_at(x, pw);
+      cloud->coefficients_at(x, pp);
+      for (std::size_t k = 0; k < kWavelengths.size(); ++k) {
+        EXPECT_NEAR(pp.sigma_a[k], pw.sigma_a[k], 1e-5 * pw.sigma_a[k] + 1e-12) << i;
+        EXPECT_NEAR(pp.sigma_s[k], pw.sigma_s[k], 1e-5 * pw.sigma_s[k] + 1e-12) << i;
+      }
+      dense += pw.sigma_a[0] > 0.0;
+    }
+  EXPECT_GT(dense, 20);
+  // Between the puffs neither holds medium.
+  const openvdb::Vec3d gap = xf->indexToWorld(openvdb::Vec3d(150, 7, 3));
+  EXPECT_FALSE(s.static_clouds[0]->bounds().contains(Vec3(gap.x(), gap.y(), gap.z())));
+  EXPECT_FALSE(s.static_clouds[1]->bounds().contains(Vec3(gap.x(), gap.y(), gap.z())));
 }
 
 TEST_F(VdbDensityCloud, RendersAsTheSameCloudWrittenAsAnObscuraKeyframe) {

@@ -5,8 +5,9 @@
 // flame, heat, ...), in the tool's own units. Read as a scene's vdb-density
 // cloud (docs/formats.md, "Clouds from other tools' VDB files"): the grids
 // come back as dense arrays over the density grid's active bounding box
-// only, so a small cloud far from the index origin costs its own size, not
-// the index space around it. The file is walked whole (vdb_stream_check.h)
+// only (or, read_vdb_density_parts, over boxes around its clusters of
+// active voxels), so a small cloud far from the index origin costs its own
+// size, not the index space around it. The file is walked whole (vdb_stream_check.h)
 // before OpenVDB reads it.
 #include <filesystem>
 #include <string>
@@ -38,5 +39,19 @@ struct VdbDensityVolume {
 VdbDensityVolume read_vdb_density(const std::filesystem::path& path,
                                   const std::string& density_grid,
                                   const std::string& temperature_grid);
+
+// The same grids in parts where the active voxels lie in clusters far
+// apart: the active 8³ leaves (and active tiles) grouped by adjacency, a box
+// around each group's active voxels widened by one voxel of background (so
+// that the trilinear reconstruction at its rim is the whole grid's), boxes
+// that then overlap merged. Returned only when the parts together hold
+// under half the voxels of the active bounding box (and are at most
+// kMaxVdbDensityParts); otherwise the one box of read_vdb_density. Parts in
+// order of their lowest index (z, then y, then x). The memory of all parts
+// is checked before any is allocated.
+inline constexpr int kMaxVdbDensityParts = 64;
+std::vector<VdbDensityVolume> read_vdb_density_parts(const std::filesystem::path& path,
+                                                     const std::string& density_grid,
+                                                     const std::string& temperature_grid);
 
 }  // namespace obscura

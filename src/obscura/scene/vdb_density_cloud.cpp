@@ -4,6 +4,8 @@
 
 #include <cmath>
 #include <optional>
+#include <utility>
+#include <vector>
 
 #include "obscura/io/json_reader.h"
 #include "obscura/io/numbered_files.h"
@@ -145,9 +147,11 @@ void add_sequence(JsonObject& o, const std::filesystem::path& pattern, const Vdb
 
 }  // namespace
 
-VoxelGrid read_vdb_density_cloud(const std::filesystem::path& file, const VdbDensityMapping& m,
-                                 const SpeciesOptics& optics) {
-  VdbDensityVolume v = read_vdb_density(file, m.density_grid, m.temperature_grid);
+namespace {
+
+// One volume of the file's grids as a voxel grid (read_vdb_density_cloud).
+VoxelGrid voxels_of(VdbDensityVolume v, const std::filesystem::path& file,
+                    const VdbDensityMapping& m, const SpeciesOptics& optics) {
   const std::string source = file.string();
   ConcentrationFrame frame;
   ScalarGrid& c = frame.concentration_g_m3;
@@ -163,6 +167,22 @@ VoxelGrid read_vdb_density_cloud(const std::filesystem::path& file, const VdbDen
     frame.temperature_k = ScalarGrid{c.dims, c.placement, std::move(v.temperature)};
   }
   return voxelise(frame, optics, m.ambient_temperature_k, source);
+}
+
+}  // namespace
+
+VoxelGrid read_vdb_density_cloud(const std::filesystem::path& file, const VdbDensityMapping& m,
+                                 const SpeciesOptics& optics) {
+  return voxels_of(read_vdb_density(file, m.density_grid, m.temperature_grid), file, m, optics);
+}
+
+std::vector<VoxelGrid> read_vdb_density_cloud_parts(const std::filesystem::path& file,
+                                                    const VdbDensityMapping& m,
+                                                    const SpeciesOptics& optics) {
+  std::vector<VoxelGrid> grids;
+  for (VdbDensityVolume& v : read_vdb_density_parts(file, m.density_grid, m.temperature_grid))
+    grids.push_back(voxels_of(std::move(v), file, m, optics));
+  return grids;
 }
 
 void parse_vdb_density_cloud(JsonObject& o, const std::filesystem::path& base, Scene& scene,
@@ -194,8 +214,10 @@ void parse_vdb_density_cloud(JsonObject& o, const std::filesystem::path& base, S
   if (!std::filesystem::is_regular_file(file, ec))
     throw o.error("file", fmt::format("cannot open VDB file '{}': no such file", file.string()));
   scene.input_files.push_back(file);
-  scene.static_clouds.push_back(std::make_shared<GridMedium>(
-      std::make_shared<VoxelGrid>(read_vdb_density_cloud(file, mapping, optics))));
+  // A sparse file's clusters far apart are separate grids (io/vdb_density_file.h).
+  for (VoxelGrid& grid : read_vdb_density_cloud_parts(file, mapping, optics))
+    scene.static_clouds.push_back(
+        std::make_shared<GridMedium>(std::make_shared<VoxelGrid>(std::move(grid))));
 }
 
 }  // namespace obscura

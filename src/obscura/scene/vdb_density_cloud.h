@@ -8,6 +8,7 @@
 // cloud whose keyframes are its frames at a frame rate.
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "obscura/core/vec3.h"
 #include "obscura/medium/species_optics.h"
@@ -37,11 +38,19 @@ struct VdbDensityMapping {
 VoxelGrid read_vdb_density_cloud(const std::filesystem::path& file,
                                  const VdbDensityMapping& mapping, const SpeciesOptics& optics);
 
+// The same, one grid per part of read_vdb_density_parts: where the active
+// voxels lie in clusters far apart, a grid around each rather than one box
+// around all (a static cloud; a sequence's frames stay one box each, as
+// keyframes are interpolated voxel by voxel).
+std::vector<VoxelGrid> read_vdb_density_cloud_parts(const std::filesystem::path& file,
+                                                    const VdbDensityMapping& mapping,
+                                                    const SpeciesOptics& optics);
+
 // Parses one "/clouds/i" object of type "vdb-density" (`o`, relative paths
-// against `base`) into `scene`: a static cloud for one file, an
-// AnimatedCloud for a numbered sequence (its first frame read at once, so
-// that a wrong grid name fails at load). Throws InputError naming the scene
-// file and the JSON path, or the VDB file and its grid.
+// against `base`) into `scene`: static clouds for one file (one per part of
+// read_vdb_density_cloud_parts), an AnimatedCloud for a numbered sequence
+// (its first frame read at once, so that a wrong grid name fails at load). Throws InputError naming
+// the scene file and the JSON path, or the VDB file and its grid.
 class JsonObject;
 void parse_vdb_density_cloud(JsonObject& o, const std::filesystem::path& base, Scene& scene,
                              int index);
