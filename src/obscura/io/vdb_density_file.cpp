@@ -258,8 +258,12 @@ std::vector<VdbDensityVolume> read_vdb_density_parts(const std::filesystem::path
   const openvdb::CoordBBox box = active_box(*g.density, empty);
   std::vector<VdbDensityVolume> parts;
   if (!empty) {
-    // Beyond a million leaves (5·10⁸ voxels) the clusters are not worth their map.
-    const std::vector<openvdb::CoordBBox> boxes = cluster_boxes(g.density->tree(), 1u << 20);
+    // Beyond a million leaves (5·10⁸ voxels) the clusters are not worth their
+    // map, nor beyond a 256th of the memory limit (a map entry takes under
+    // 256 bytes): then the one box, whose memory is checked.
+    const std::size_t max_leaves =
+        std::min<std::uint64_t>(std::uint64_t{1} << 20, memory_limit_bytes() / 256);
+    const std::vector<openvdb::CoordBBox> boxes = cluster_boxes(g.density->tree(), max_leaves);
     double voxels = 0.0;
     for (const openvdb::CoordBBox& b : boxes) voxels += static_cast<double>(b.volume());
     if (boxes.size() > 1 && boxes.size() <= static_cast<std::size_t>(kMaxVdbDensityParts) &&
