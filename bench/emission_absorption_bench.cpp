@@ -78,8 +78,13 @@ int main(int argc, char** argv) {
               static_cast<unsigned long long>(img.stats.segments),
               static_cast<double>(img.stats.segments) / img.stats.rays);
   std::printf("  voxel steps/s/core   %.3g\n", img.stats.segments / s / cores);
-  std::printf("  integrand evals/step %.2f\n",
-              static_cast<double>(img.stats.integrand_evals) /
-                  std::max<unsigned long long>(1, img.stats.segments));
+  // Only the adaptive (validation) quadrature counts its integrand
+  // evaluations; the cell quadrature evaluates each cell's three points.
+  if (img.stats.integrand_evals > 0)
+    std::printf("  integrand evals/step %.2f\n",
+                static_cast<double>(img.stats.integrand_evals) /
+                    std::max<unsigned long long>(1, img.stats.segments));
+  else
+    std::printf("  quadrature           cell (entry, middle and exit of each voxel step)\n");
   return 0;
 }
