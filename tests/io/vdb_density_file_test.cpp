@@ -148,6 +148,33 @@ TEST_F(VdbDensityFile, FarClustersAreReadAsPartsWithABorderOfBackground) {
   }
 }
 
+TEST_F(VdbDensityFile, ActiveTilesAreClusteredLikeTheirVoxels) {
+  // Two active tiles of 128³ voxels (as a solver's fill writes a uniform
+  // region), 40 tiles apart: a part around each, with its border.
+  auto density = openvdb::FloatGrid::create(0.0f);
+  density->setName("density");
+  density->setTransform(tool_transform());
+  density->tree().addTile(2, Coord(0, 0, 0), 0.5f, true);
+  density->tree().addTile(2, Coord(128 * 40, 0, 0), 0.25f, true);
+  const auto p = dir_ / "tiles.vdb";
+  write_tool_vdb(p, {density});
+  const std::vector<VdbDensityVolume> parts = read_vdb_density_parts(p, "density", "");
+  ASSERT_EQ(parts.size(), 2u);
+  for (int n = 0; n < 2; ++n) {
+    const VdbDensityVolume& v = parts[static_cast<std::size_t>(n)];
+    EXPECT_EQ(v.dims, (GridDims{130, 130, 130}));
+    EXPECT_EQ(v.index_min[0], n == 0 ? -1 : 128 * 40 - 1);
+    EXPECT_EQ(v.index_min[1], -1);
+    const auto at = [&](int i, int j, int k) {
+      return v.density[static_cast<std::size_t>(i + 130 * (j + 130 * k))];
+    };
+    EXPECT_EQ(at(0, 0, 0), 0.0f);  // the border
+    EXPECT_EQ(at(1, 1, 1), n == 0 ? 0.5f : 0.25f);
+    EXPECT_EQ(at(128, 64, 128), n == 0 ? 0.5f : 0.25f);
+    EXPECT_EQ(at(129, 1, 1), 0.0f);
+  }
+}
+
 TEST_F(VdbDensityFile, ACompactOrNearClusterIsOneBox) {
   // One blob, or two whose boxes would hold over half of the box around
   // both: the one box of read_vdb_density.

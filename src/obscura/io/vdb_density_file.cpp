@@ -166,9 +166,8 @@ std::vector<openvdb::CoordBBox> cluster_boxes(const openvdb::FloatTree& tree,
     for (int z = lo[2]; z <= hi[2]; ++z)
       for (int y = lo[1]; y <= hi[1]; ++y)
         for (int x = lo[0]; x <= hi[0]; ++x) {
-          const openvdb::CoordBBox leaf_box(
-              openvdb::Coord(x << 3, y << 3, z << 3),
-              openvdb::Coord((x << 3) + 7, (y << 3) + 7, (z << 3) + 7));
+          const openvdb::CoordBBox leaf_box(openvdb::Coord(8 * x, 8 * y, 8 * z),
+                                            openvdb::Coord(8 * x + 7, 8 * y + 7, 8 * z + 7));
           leaves[{x, y, z}].expand(
               openvdb::CoordBBox(openvdb::Coord::maxComponent(tile.min(), leaf_box.min()),
                                  openvdb::Coord::minComponent(tile.max(), leaf_box.max())));
