@@ -17,7 +17,6 @@ docs/validation.md).
         [--estimate tracks|collisions]
 """
 import argparse
-import json
 import pathlib
 import tempfile
 import time
@@ -25,6 +24,7 @@ import time
 import numpy as np
 
 import obscura
+from demo_scene import prepare_demo
 
 
 def blur4(image):
@@ -56,11 +56,7 @@ def main():
 
     with tempfile.TemporaryDirectory(prefix="obscura_accuracy_") as tmp:
         tmp = pathlib.Path(tmp)
-        obscura.prepare(str(root / "examples/smoke-screen/prepare.json"), str(tmp / "cloud"))
-        (tmp / "tank.obj").write_bytes((root / "examples/tank/tank.obj").read_bytes())
-        doc = json.loads((root / "examples/demo/scene.json").read_text())
-        for sensor in doc["sensors"]:
-            sensor["width"], sensor["height"] = width, height
+        doc = prepare_demo(root, tmp, width, height)
         render = {k: v for k, v in doc["render"].items() if k not in ("photon_map", "method")}
 
         def scene_for(method, spp, extra):

@@ -13,7 +13,6 @@ photon count. Nothing is asserted (docs/performance.md).
         [--size 256x128] [--time 8] [--photons 50000,100000,200000,400000] [--threads 0]
 """
 import argparse
-import json
 import pathlib
 import tempfile
 import time
@@ -21,6 +20,7 @@ import time
 import numpy as np
 
 import obscura
+from demo_scene import prepare_demo
 
 
 def main():
@@ -37,11 +37,7 @@ def main():
 
     with tempfile.TemporaryDirectory(prefix="obscura_noise_") as tmp:
         tmp = pathlib.Path(tmp)
-        obscura.prepare(str(root / "examples/smoke-screen/prepare.json"), str(tmp / "cloud"))
-        doc = json.loads((root / "examples/demo/scene.json").read_text())
-        (tmp / "tank.obj").write_bytes((root / "examples/tank/tank.obj").read_bytes())
-        for sensor in doc["sensors"]:
-            sensor["width"], sensor["height"] = width, height
+        doc = prepare_demo(root, tmp, width, height)
         doc["render"]["method"] = "radiance-cache"
         doc["render"].pop("photon_map", None)
         print(f"demo frame at t = {args.time} s, {width}x{height} px per sensor, "

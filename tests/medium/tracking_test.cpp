@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "medium/test_grids.h"
@@ -19,6 +20,28 @@ namespace obscura {
 namespace {
 
 constexpr int kSamples = 200000;
+
+// The mean of n ratio-tracking estimates along `ray` over [0, 20] against
+// e^{−τ}, within 4 standard errors of the mean, and a standard error below
+// 1 % of the answer (so a test has the power to see a 4 % bias). Every
+// estimate lies in [0, 1].
+void expect_unbiased_transmittance(const Medium& medium, const Ray& ray, const SpectralLerp& lambda,
+                                   Rng& rng, int n, int label) {
+  const double exact = std::exp(-medium.optical_depth(ray, 0.0, 20.0)[0]);
+  MediumPoint scratch;
+  double sum = 0, sum2 = 0;
+  for (int i = 0; i < n; ++i) {
+    const double t = estimate_transmittance(medium, ray, 20.0, lambda, rng, scratch);
+    ASSERT_GE(t, 0.0);
+    ASSERT_LE(t, 1.0);
+    sum += t;
+    sum2 += t * t;
+  }
+  const double mean = sum / n;
+  const double stderr_mean = std::sqrt(std::max(0.0, sum2 / n - mean * mean) / (n - 1));
+  EXPECT_NEAR(mean, exact, 4.0 * stderr_mean + 1e-12) << "ray " << label << " exact " << exact;
+  EXPECT_LT(stderr_mean, 0.01 * exact) << "ray " << label << ": the test lacks power";
+}
 
 // Chi-square of free-flight distances along `ray` over [0, t_max]: bins in
 // [0, t_max] plus the "escaped" cell, against σt(t) e^{−τ(0,t)}.
@@ -69,35 +92,19 @@ TEST(DeltaTracking, HeterogeneousMediaFollowTheirOpticalDepth) {
       testing::chi2_passes("grid + box", free_flight_chi2(both, ray, 20.0, 3.7, 4), threshold));
 }
 
-// Ratio tracking: the mean of N estimates against e^{−τ}, within 4 standard
-// errors of the mean; N is large enough that the standard error is below 1 %
-// of the answer, so the test has the power to see a 4 % bias.
+// Ratio tracking: the mean of N estimates against e^{−τ}
+// (expect_unbiased_transmittance).
 TEST(RatioTracking, EstimatesTransmittanceWithoutBias) {
   auto grid = std::make_shared<GridMedium>(
       testing::random_grid({8, 8, 8}, 1, 21, rotation_from_euler_deg({0, 30, 60})), 2);
   const BBox3 b = grid->bounds();
   Rng dirs(5, 0);
-  MediumPoint scratch;
   const SpectralLerp lambda = SpectralLerp::at(grid->wavelengths_um(), 3.0);
   for (int r = 0; r < 5; ++r) {
     const Vec3 d =
         normalize(Vec3(dirs.uniform() - 0.5, dirs.uniform() - 0.5, dirs.uniform() - 0.5));
-    const Ray ray{b.center() - d * 10.0, d};
-    const double exact = std::exp(-grid->optical_depth(ray, 0.0, 20.0)[0]);
     Rng rng(7, r);
-    double sum = 0, sum2 = 0;
-    const int n = 100000;
-    for (int i = 0; i < n; ++i) {
-      const double t = estimate_transmittance(*grid, ray, 20.0, lambda, rng, scratch);
-      ASSERT_GE(t, 0.0);
-      ASSERT_LE(t, 1.0);
-      sum += t;
-      sum2 += t * t;
-    }
-    const double mean = sum / n;
-    const double stderr_mean = std::sqrt(std::max(0.0, sum2 / n - mean * mean) / (n - 1));
-    EXPECT_NEAR(mean, exact, 4.0 * stderr_mean + 1e-12) << "ray " << r << " exact " << exact;
-    EXPECT_LT(stderr_mean, 0.01 * exact) << "ray " << r << ": the test lacks power";
+    expect_unbiased_transmittance(*grid, Ray{b.center() - d * 10.0, d}, lambda, rng, 100000, r);
   }
 }
 
@@ -135,25 +142,12 @@ TEST(RatioTracking, ResidualTrackingIsUnbiasedWhereTheMediumVaries) {
   const GridMedium grid(full, 2);
   const BBox3 b = grid.bounds();
   const SpectralLerp lambda{0, 0, 0.0};
-  MediumPoint scratch;
   Rng dirs(6, 0);
   for (int r = 0; r < 4; ++r) {
     const Vec3 d =
         normalize(Vec3(dirs.uniform() - 0.5, dirs.uniform() - 0.5, dirs.uniform() - 0.5));
-    const Ray ray{b.center() - d * 10.0, d};
-    const double exact = std::exp(-grid.optical_depth(ray, 0.0, 20.0)[0]);
     Rng rng(8, r);
-    double sum = 0, sum2 = 0;
-    const int n = 50000;
-    for (int i = 0; i < n; ++i) {
-      const double t = estimate_transmittance(grid, ray, 20.0, lambda, rng, scratch);
-      sum += t;
-      sum2 += t * t;
-    }
-    const double mean = sum / n;
-    const double stderr_mean = std::sqrt(std::max(0.0, sum2 / n - mean * mean) / (n - 1));
-    EXPECT_NEAR(mean, exact, 4.0 * stderr_mean + 1e-12) << "ray " << r << " exact " << exact;
-    EXPECT_LT(stderr_mean, 0.01 * exact) << "ray " << r << ": the test lacks power";
+    expect_unbiased_transmittance(grid, Ray{b.center() - d * 10.0, d}, lambda, rng, 50000, r);
   }
 }
 

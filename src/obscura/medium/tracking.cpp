@@ -19,25 +19,22 @@ inline double exponential_step(Rng& rng, double sigma) {
   return -std::log(1.0 - rng.uniform()) / sigma;
 }
 
-// The walk both estimators share: tentative collisions at rate σ̄ through each
-// majorant piece (restarted at piece boundaries), with the true σt evaluated
-// at each. `visit(t, sigma_t, majorant)` returns false to stop the walk.
+// The walk both estimators share: tentative collisions at `rate` (per m)
+// over [t_begin, t_end) of the ray, with the true σt evaluated at each.
+// `visit(t, sigma_t)` returns false to stop the walk; returns whether it ran
+// to t_end.
 template <typename Visit>
-void walk_tentative_collisions(const Medium& medium, const Ray& ray, double t_max,
-                               const SpectralLerp& lambda, Rng& rng, MediumPoint& scratch,
-                               Visit&& visit) {
-  medium.trace_majorants(ray, 0.0, t_max, [&](const MajorantSegment& piece) {
-    const double majorant = lambda(piece.sigma_majorant);
-    if (!(majorant > 0.0)) return true;
-    double t = piece.t_begin;
-    while (true) {
-      t += exponential_step(rng, majorant);
-      if (t >= piece.t_end) return true;  // no collision in this piece: on to the next
-      medium.coefficients_at(ray.at(t), scratch);
-      const double sigma_t = lambda(scratch.sigma_a.data()) + lambda(scratch.sigma_s.data());
-      if (!visit(t, sigma_t, majorant)) return false;
-    }
-  });
+bool walk_tentative_collisions(const Medium& medium, const Ray& ray, double t_begin, double t_end,
+                               double rate, const SpectralLerp& lambda, Rng& rng,
+                               MediumPoint& scratch, Visit&& visit) {
+  double t = t_begin;
+  while (true) {
+    t += exponential_step(rng, rate);
+    if (t >= t_end) return true;
+    medium.coefficients_at(ray.at(t), scratch);
+    const double sigma_t = lambda(scratch.sigma_a.data()) + lambda(scratch.sigma_s.data());
+    if (!visit(t, sigma_t)) return false;
+  }
 }
 
 }  // namespace
@@ -45,14 +42,19 @@ void walk_tentative_collisions(const Medium& medium, const Ray& ray, double t_ma
 std::optional<double> sample_free_flight(const Medium& medium, const Ray& ray, double t_max,
                                          const SpectralLerp& lambda, Rng& rng,
                                          MediumPoint& scratch) {
+  // Delta tracking through each majorant piece, restarted at its boundary.
   std::optional<double> hit;
-  walk_tentative_collisions(medium, ray, t_max, lambda, rng, scratch,
-                            [&](double t, double sigma_t, double majorant) {
-                              if (rng.uniform() * majorant >= sigma_t)
-                                return true;  // null collision
-                              hit = t;
-                              return false;
-                            });
+  medium.trace_majorants(ray, 0.0, t_max, [&](const MajorantSegment& piece) {
+    const double majorant = lambda(piece.sigma_majorant);
+    if (!(majorant > 0.0)) return true;
+    return walk_tentative_collisions(medium, ray, piece.t_begin, piece.t_end, majorant, lambda, rng,
+                                     scratch, [&](double t, double sigma_t) {
+                                       if (rng.uniform() * majorant >= sigma_t)
+                                         return true;  // null collision
+                                       hit = t;
+                                       return false;
+                                     });
+  });
   return hit;
 }
 
@@ -79,21 +81,18 @@ double estimate_transmittance(const Medium& medium, const Ray& ray, double t_max
     const double residual = majorant - control;
     // Within rounding of a constant piece: the control is the whole of σt.
     if (!(residual > 1e-9 * majorant)) return transmittance != 0.0;
-    double t = piece.t_begin;
-    while (true) {
-      t += exponential_step(rng, residual);
-      if (t >= piece.t_end) return true;  // no collision in this piece: on to the next
-      medium.coefficients_at(ray.at(t), scratch);
-      const double sigma_t = lambda(scratch.sigma_a.data()) + lambda(scratch.sigma_s.data());
-      transmittance *= std::max(0.0, 1.0 - (sigma_t - control) / residual);
-      if (transmittance > 0.0 && transmittance < kRouletteBelow) {
-        if (rng.uniform() >= 0.5)
-          transmittance = 0.0;
-        else
-          transmittance *= 2.0;
-      }
-      if (transmittance == 0.0) return false;
-    }
+    return walk_tentative_collisions(medium, ray, piece.t_begin, piece.t_end, residual, lambda, rng,
+                                     scratch, [&](double, double sigma_t) {
+                                       transmittance *=
+                                           std::max(0.0, 1.0 - (sigma_t - control) / residual);
+                                       if (transmittance > 0.0 && transmittance < kRouletteBelow) {
+                                         if (rng.uniform() >= 0.5)
+                                           transmittance = 0.0;
+                                         else
+                                           transmittance *= 2.0;
+                                       }
+                                       return transmittance != 0.0;
+                                     });
   });
   return transmittance;
 }

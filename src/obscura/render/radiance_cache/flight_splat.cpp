@@ -5,12 +5,11 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
-#include <string>
 #include <utility>
 
-#include "obscura/core/byte_stream.h"
 #include "obscura/core/check.h"
 #include "obscura/core/parallel.h"
+#include "obscura/core/shared_ranges.h"
 #include "obscura/medium/lattice_walker.h"
 #include "obscura/render/radiance_cache/spherical_harmonics.h"
 
@@ -96,35 +95,26 @@ class CellCorners {
   std::array<std::size_t, 8> first_{};
 };
 
-// Every process sends the sums of its slabs' nodes (slots in increasing
-// order) and takes the others': afterwards all hold every slab's sums.
+// The sums of each process's slabs' nodes, shared (core/shared_ranges.h):
+// afterwards every process holds every slab's sums.
 void share_slabs(const NodeLattice& lattice, int slabs, int count, const ProcessGroup& processes,
                  std::vector<double>& sum) {
-  const auto rank = static_cast<std::size_t>(processes.rank()),
-             ranks = static_cast<std::size_t>(processes.size());
-  std::vector<std::vector<std::size_t>> slots_of(ranks);
+  const auto ranks = static_cast<std::size_t>(processes.size());
+  const auto n = static_cast<std::size_t>(count);
+  // Per process, the runs of consecutive slots of its slabs' nodes.
+  std::vector<IndexRanges> ranges(ranks);
   for (std::size_t slot = 0; slot < lattice.slot_count(); ++slot) {
     if (!lattice.slot_inside(slot)) continue;
     const int s = lattice.slot_node(slot)[2] / kSlabLayers;
-    if (s < slabs) slots_of[static_cast<std::size_t>(s) % ranks].push_back(slot);
+    if (s >= slabs) continue;
+    IndexRanges& own = ranges[static_cast<std::size_t>(s) % ranks];
+    if (!own.empty() && own.back().second == slot * n)
+      own.back().second += n;
+    else
+      own.emplace_back(slot * n, (slot + 1) * n);
   }
-  const auto n = static_cast<std::size_t>(count);
-  std::vector<double> mine;
-  mine.reserve(slots_of[rank].size() * n);
-  for (const std::size_t slot : slots_of[rank])
-    mine.insert(mine.end(), sum.begin() + slot * n, sum.begin() + (slot + 1) * n);
-  ByteWriter out;
-  out.put_vector(mine);
-  const std::vector<std::string> all = processes.all_gather(out.take());
-  for (std::size_t r = 0; r < ranks; ++r) {
-    if (r == rank) continue;
-    ByteReader in(all[r]);
-    const std::vector<double> theirs = in.get_vector<double>();
-    OBSCURA_CHECK(theirs.size() == slots_of[r].size() * n);
-    for (std::size_t i = 0; i < slots_of[r].size(); ++i)
-      std::copy(theirs.begin() + i * n, theirs.begin() + (i + 1) * n,
-                sum.begin() + slots_of[r][i] * n);
-  }
+  share_ranges(processes, sum,
+               [&](int r) -> const IndexRanges& { return ranges[static_cast<std::size_t>(r)]; });
 }
 
 }  // namespace

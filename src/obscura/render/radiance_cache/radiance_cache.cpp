@@ -8,11 +8,11 @@
 #include <limits>
 #include <optional>
 
-#include "obscura/core/byte_stream.h"
 #include "obscura/core/check.h"
 #include "obscura/core/error.h"
 #include "obscura/core/memory_limit.h"
 #include "obscura/core/parallel.h"
+#include "obscura/core/shared_ranges.h"
 #include "obscura/render/photon_map/photon_tracing.h"
 #include "obscura/render/radiance_cache/flight_splat.h"
 
@@ -74,21 +74,12 @@ void for_blocks_shared(const ProcessGroup& processes, std::size_t blocks, int th
              ranks = static_cast<std::size_t>(processes.size());
   const std::size_t own = blocks / ranks + (rank < blocks % ranks ? 1 : 0);
   parallel_for(own, threads, [&](std::size_t i) { body(i * ranks + rank); });
-  if (ranks == 1) return;
-  ByteWriter out;
-  for (std::size_t b = rank; b < blocks; b += ranks)
-    out.put_vector(
-        std::vector<float>(data.begin() + b * per_block, data.begin() + (b + 1) * per_block));
-  const std::vector<std::string> all = processes.all_gather(out.take());
-  for (std::size_t r = 0; r < ranks; ++r) {
-    if (r == rank) continue;
-    ByteReader in(all[r]);
-    for (std::size_t b = r; b < blocks; b += ranks) {
-      const std::vector<float> values = in.get_vector<float>();
-      OBSCURA_CHECK(values.size() == per_block);
-      std::copy(values.begin(), values.end(), data.begin() + b * per_block);
-    }
-  }
+  share_ranges(processes, data, [&](int r) {
+    IndexRanges ranges;
+    for (std::size_t block = static_cast<std::size_t>(r); block < blocks; block += ranks)
+      ranges.emplace_back(block * per_block, (block + 1) * per_block);
+    return ranges;
+  });
 }
 
 }  // namespace
