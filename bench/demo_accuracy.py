@@ -15,6 +15,7 @@ docs/validation.md).
         [--size 64x32] [--time 8] [--reference-spp 1024] [--reference-file F]
         [--method radiance-cache] [--photons N] [--spp 1] [--sh-degree D]
         [--estimate tracks|collisions]
+        [--voxel M]
 """
 import argparse
 import pathlib
@@ -48,6 +49,7 @@ def main():
     parser.add_argument("--spp", type=int, default=1)
     parser.add_argument("--sh-degree", type=int, default=0)
     parser.add_argument("--estimate", default="")
+    parser.add_argument("--voxel", type=float, default=0.0)
     parser.add_argument("--threads", type=int, default=0)
     parser.add_argument("--root", default=".", help="the repository root")
     args = parser.parse_args()
@@ -92,6 +94,8 @@ def main():
                 cache["sh_degree"] = args.sh_degree
             if args.estimate:
                 cache["estimate"] = args.estimate
+            if args.voxel > 0:
+                cache["voxel_m"] = args.voxel
             extra = {"radiance_cache": cache}
         scene = scene_for(args.method, args.spp, extra)
         start = time.perf_counter()
