@@ -15,7 +15,7 @@ docs/validation.md).
         [--size 64x32] [--time 8] [--reference-spp 1024] [--reference-file F]
         [--method radiance-cache] [--photons N] [--spp 1] [--sh-degree D]
         [--estimate tracks|collisions]
-        [--voxel M]
+        [--voxel M] [--seed N] [--no-sensor-peaks]
 """
 import argparse
 import pathlib
@@ -50,6 +50,9 @@ def main():
     parser.add_argument("--sh-degree", type=int, default=0)
     parser.add_argument("--estimate", default="")
     parser.add_argument("--voxel", type=float, default=0.0)
+    parser.add_argument("--seed", type=int, default=0, help="the method's seed (default: the scene's)")
+    parser.add_argument("--no-sensor-peaks", action="store_true",
+                        help="radiance cache: the harmonics alone, no forward peak towards the sensors")
     parser.add_argument("--threads", type=int, default=0)
     parser.add_argument("--root", default=".", help="the repository root")
     args = parser.parse_args()
@@ -96,7 +99,11 @@ def main():
                 cache["estimate"] = args.estimate
             if args.voxel > 0:
                 cache["voxel_m"] = args.voxel
+            if args.no_sensor_peaks:
+                cache["sensor_peaks"] = False
             extra = {"radiance_cache": cache}
+        if args.seed:
+            extra["seed"] = args.seed
         scene = scene_for(args.method, args.spp, extra)
         start = time.perf_counter()
         result = obscura.render(scene, time=args.time, threads=args.threads)

@@ -108,6 +108,7 @@ TEST(MarchJob, CacheItemsEqualTheCpuMarchBitForBitAtEveryDegree) {
     request.sh_degree = degree;
     request.sun = true;
     request.to_sun = scene.sun.direction();
+    request.peak_channel = cache.peak_channel(0);
     request.output_node = {0, 1, 2};
     const std::vector<CameraRay> rays = rays_around(scene.medium->bounds(), 200, 5 + degree);
     MarchResult result;
@@ -116,7 +117,8 @@ TEST(MarchJob, CacheItemsEqualTheCpuMarchBitForBitAtEveryDegree) {
     int lit = 0;
     for (std::size_t i = 0; i < rays.size(); ++i) {
       double l[3] = {0, 0, 0}, t[3] = {1, 1, 1};
-      const std::uint64_t cells = march_cache_lattice(scene, cache, rays[i], band, record, l, t);
+      const std::uint64_t cells =
+          march_cache_lattice(scene, cache, rays[i], band, record, cache.peak_channel(0), l, t);
       lit += l[0] > 0;
       for (std::size_t j = 0; j < 3; ++j) {
         ASSERT_EQ(result.radiance[j * rays.size() + i], l[j])

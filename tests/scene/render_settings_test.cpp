@@ -90,6 +90,18 @@ TEST(RenderSettings, TheGpuTakesTheLatticeMethodsOnly) {
   EXPECT_TRUE(testing::contains(e.detail(), "\"cell\"")) << e.what();
 }
 
+// The radiance cache's forward peak towards narrow sensors is on unless
+// the scene turns it off; a value that is not a boolean is refused by name.
+TEST(RenderSettings, TheSensorPeaksAreOnByDefault) {
+  EXPECT_TRUE(parse(nlohmann::json::object()).radiance_cache.sensor_peaks);
+  const nlohmann::json off = {{"method", "radiance-cache"},
+                              {"radiance_cache", {{"sensor_peaks", false}}}};
+  EXPECT_FALSE(parse(off).radiance_cache.sensor_peaks);
+  const InputError e =
+      parse_error({{"method", "radiance-cache"}, {"radiance_cache", {{"sensor_peaks", "yes"}}}});
+  EXPECT_EQ(e.field(), "/render/radiance_cache/sensor_peaks");
+}
+
 // The command line names its own options: the same checks, another namer.
 TEST(RenderSettings, OneCheckForTheSceneFileAndTheCommandLine) {
   RenderSettings s;

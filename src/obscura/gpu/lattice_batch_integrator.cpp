@@ -84,9 +84,11 @@ LatticeBatchIntegrator::LatticeBatchIntegrator(const Scene& scene, const FrameSp
     frame.sun_irradiance.push_back(
         scene.sun.enabled && cache_ ? scene.sun.irradiance(nd.wavelength_um) : 0.0);
   }
-  for (MarchRequest& request : requests_) {
+  for (std::size_t s = 0; s < requests_.size(); ++s) {
+    MarchRequest& request = requests_[s];
     request.source = source;
     if (cache_) {
+      request.peak_channel = cache_->peak_channel(static_cast<int>(s));
       request.sh_degree = cache_->sh_degree();
       request.sun = scene.sun.enabled;
       if (scene.sun.enabled) request.to_sun = scene.sun.direction();

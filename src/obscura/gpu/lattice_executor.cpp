@@ -31,6 +31,7 @@ MarchJob make_march_job(const LatticeView& view, std::int32_t stride, int nodes,
   job.stride = stride;
   job.source = request.source;
   job.sh_degree = request.sh_degree;
+  job.peak_channel = request.peak_channel;
   job.sun = request.sun ? 1 : 0;
   job.to_sun = request.to_sun;
   return job;

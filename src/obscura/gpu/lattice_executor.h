@@ -47,9 +47,10 @@ struct FrameLattice {
 // distinct node it is at (a sensor's bands' nodes in order).
 struct MarchRequest {
   MarchSource source = MarchSource::kEmission;
-  int sh_degree = 0;  // kCache
-  bool sun = false;   // kCache
-  Vec3 to_sun;        // kCache, unit, world
+  int sh_degree = 0;      // kCache
+  bool sun = false;       // kCache
+  Vec3 to_sun;            // kCache, unit, world
+  int peak_channel = -1;  // kCache: the sensor's forward peak (RadianceCache::peak_channel)
   std::vector<std::int32_t> output_node;
 };
 

@@ -54,10 +54,10 @@ struct MarchJob {
   std::int32_t outputs = 0;
   std::int32_t stride = record::kMediumStride;  // floats per record
   MarchSource source = MarchSource::kEmission;
-  std::int32_t sh_degree = 0;  // kCache: the records' spherical-harmonic degree
-  std::int32_t sun = 0;        // kCache: whether the sun shines
-  std::int32_t padding = 0;
-  Vec3 to_sun;  // kCache: unit world direction towards the sun
+  std::int32_t sh_degree = 0;      // kCache: the records' spherical-harmonic degree
+  std::int32_t sun = 0;            // kCache: whether the sun shines
+  std::int32_t peak_channel = -1;  // kCache: CacheLight::peak of this job's sensor
+  Vec3 to_sun;                     // kCache: unit world direction towards the sun
 
   OBSCURA_HOST_DEVICE std::uint64_t items() const {
     return ray_count * static_cast<std::uint64_t>(outputs);
@@ -105,7 +105,8 @@ OBSCURA_HOST_DEVICE void march_item(const MarchJob& job, std::uint64_t item) {
   } else {
     constexpr int kDegree = sh_degree_of_stride(Stride);
     static_assert(kDegree >= 0, "no light records are this long");
-    const CacheLight light(r.direction, job.sun != 0, job.to_sun, job.sun_irradiance + u, kDegree);
+    const CacheLight light(r.direction, job.sun != 0, job.to_sun, job.sun_irradiance + u, kDegree,
+                           job.peak_channel);
     const CacheSource source{job.planck + u, light};
     cells = march_lattice_view<Stride, 1>(job.lattice, &records, 1, ray, r.t_end, source, &radiance,
                                           &transmittance);

@@ -83,6 +83,7 @@ void parse_radiance_cache(JsonObject& o, RadianceCacheSettings& c) {
                   "must be \"tracks\" (every photon flight splatted along its length, where "
                   "the lattice lies on a grid cloud) or \"collisions\" (at scattering events)");
   c.track_length = estimate == "tracks";
+  c.sensor_peaks = o.boolean_or("sensor_peaks", c.sensor_peaks);
   o.finish();
 }
 

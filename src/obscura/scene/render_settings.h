@@ -87,6 +87,14 @@ struct RadianceCacheSettings {
   // kernel is one spacing; render/radiance_cache/flight_splat.h),
   // "collisions" only the scattering events.
   bool track_length = true;
+  // "sensor_peaks": the phase function's forward peak beyond the harmonics
+  // is splatted towards each narrow sensor's viewing direction (its image's
+  // half-diagonal ≤ kMaxPeakHalfAngleDeg, sensors within 1° of each other
+  // sharing one, at most two directions: what a light record's padding
+  // holds) with the track-length estimate, so that a cloud seen against the
+  // sun is not dimmed or brightened by the truncation
+  // (render/radiance_cache/radiance_cache.h).
+  bool sensor_peaks = true;
 };
 
 // Where the camera march runs ("device": "cpu" | "gpu"; docs/gpu.md). The

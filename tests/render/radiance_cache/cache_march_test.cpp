@@ -62,7 +62,8 @@ TEST(CacheMarch, OverTheRecordsEqualsOverTheMediumsCells) {
       }
       double l_records[3] = {0, 0, 0}, t_records[3] = {1, 1, 1};
       double l_medium[3] = {0, 0, 0}, t_medium[3] = {1, 1, 1};
-      const auto a = march_cache_lattice(scene, cache, camera, nodes, record, l_records, t_records);
+      const auto a =
+          march_cache_lattice(scene, cache, camera, nodes, record, -1, l_records, t_records);
       const auto b = march_cache_medium(scene, cache, camera, nodes, record, l_medium, t_medium);
       EXPECT_EQ(a, b) << "degree " << degree << " ray " << i;
       lit += l_medium[0] > 0;

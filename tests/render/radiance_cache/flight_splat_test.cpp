@@ -10,20 +10,32 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <optional>
 
 #include "medium/test_grids.h"
 #include "obscura/core/sampling.h"
 #include "obscura/medium/grid_medium.h"
 #include "obscura/render/photon_map/photon_tracing.h"
+#include "obscura/render/radiance_cache/cache_source.h"
 #include "obscura/render/radiance_cache/spherical_harmonics.h"
 #include "support/thread_process_group.h"
 
 namespace obscura {
 namespace {
 
+// A random rotated grid; with `g`, one asymmetry everywhere (a cloud of one
+// material) instead of a random one per voxel.
+std::shared_ptr<VoxelGrid> fixture_grid(std::optional<float> g = std::nullopt) {
+  auto grid = testing::random_grid({9, 7, 12}, 2, 21, rotation_from_euler_deg({15, -25, 40}));
+  if (g)
+    for (int s = 0; s < 2; ++s)
+      for (std::size_t v = 0; v < grid->dims().count(); ++v) grid->g(s)[v] = *g;
+  return grid;
+}
+
 struct Fixture {
-  std::shared_ptr<VoxelGrid> grid =
-      testing::random_grid({9, 7, 12}, 2, 21, rotation_from_euler_deg({15, -25, 40}));
+  explicit Fixture(std::optional<float> g = std::nullopt) : grid(fixture_grid(g)) {}
+  std::shared_ptr<VoxelGrid> grid;
   GridMedium medium{grid};
   NodeLattice lattice{medium, 0.0, 0.0, 1u << 30};
   SpectralLerp lerp{0, 1, 0.3};
@@ -31,8 +43,12 @@ struct Fixture {
 };
 
 // ∫ hat_n(u(t)) σs(u(t)) dt / h³ along a flight by the midpoint rule with
-// many steps, σs from the medium itself.
-std::vector<double> brute_force(const Fixture& f, const PhotonFlight& flight) {
+// many steps, σs from the medium itself; with `view`, the same weighted by
+// the phase function's part beyond degree 2 towards it (hg_beyond_degree,
+// with g = (σs g)/σs of the records' trilinear σs g and σs, as the cache
+// reads it everywhere: the peak is steep in g).
+std::vector<double> brute_force(const Fixture& f, const PhotonFlight& flight,
+                                const Vec3* view = nullptr) {
   const NodeLattice& lattice = f.lattice;
   std::vector<double> out(lattice.slot_count(), 0.0);
   const int steps = 200000;
@@ -46,8 +62,20 @@ std::vector<double> brute_force(const Fixture& f, const PhotonFlight& flight) {
     std::array<std::size_t, 8> slot;
     std::array<double, 8> w;
     if (!lattice.corners(x, slot, w)) continue;
+    double weight = 1.0;
+    if (view) {
+      double sg = 0.0, s = 0.0;
+      for (int c = 0; c < 8; ++c) {
+        if (slot[c] == NodeLattice::kNoSlot) continue;
+        const float* r = f.volume.records(0) + slot[c] * f.volume.stride();
+        sg += w[c] * r[record::kSigmaSG];
+        s += w[c] * r[record::kSigmaS];
+      }
+      weight = hg_beyond_degree(cache_clamped_g(sg / s), dot(flight.dir(), *view), 2);
+    }
     for (int c = 0; c < 8; ++c)
-      if (slot[c] != NodeLattice::kNoSlot) out[slot[c]] += w[c] * sigma_s * dt / (h * h * h);
+      if (slot[c] != NodeLattice::kNoSlot)
+        out[slot[c]] += w[c] * sigma_s * weight * dt / (h * h * h);
   }
   return out;
 }
@@ -83,6 +111,30 @@ TEST(FlightSplat, EachNodeGetsTheKernelIntegralAlongTheFlight) {
       for (int l = 0; l < 9; ++l)
         ASSERT_NEAR(sum[slot * 9 + l], 2.5 * y[l] * exact[slot], 2e-3 * 2.5 * largest)
             << "flight " << n << " slot " << slot << " coefficient " << l;
+    // With two sensors' directions, one near the flight's (the forward
+    // peak) and one across it: two more sums per slot, the harmonics' the
+    // same. On a grid of one g (q then constant along the flight; with g
+    // random per voxel, the three Gauss points per cell follow q, steep in
+    // g near the peak, only to a few per cent).
+    const std::vector<Vec3> views = {normalize(flight.dir() + Vec3(0.05, -0.03, 0.02)),
+                                     normalize(cross(flight.dir(), Vec3(0.3, 0.5, 0.8)))};
+    const Fixture one_g(0.7f);
+    std::vector<double> plain(f.lattice.slot_count() * 9, 0.0),
+        with_peaks(f.lattice.slot_count() * 11, 0.0);
+    splat_flights(one_g.volume, 0, {flight}, 2, 2, plain);
+    splat_flights(one_g.volume, 0, {flight}, 2, 2, with_peaks, single_process(), views);
+    for (int v = 0; v < 2; ++v) {
+      const std::vector<double> peak = brute_force(one_g, flight, &views[v]);
+      double peak_largest = 0.0;
+      for (const double p : peak) peak_largest = std::max(peak_largest, std::abs(p));
+      ASSERT_GT(peak_largest, 0.0);
+      for (std::size_t slot = 0; slot < f.lattice.slot_count(); ++slot) {
+        for (int l = 0; l < 9; ++l)
+          ASSERT_EQ(with_peaks[slot * 11 + l], plain[slot * 9 + l]) << "slot " << slot;
+        ASSERT_NEAR(with_peaks[slot * 11 + 9 + v], 2.5 * peak[slot], 2e-3 * 2.5 * peak_largest)
+            << "flight " << n << " slot " << slot << " view " << v;
+      }
+    }
   }
 }
 
@@ -100,9 +152,11 @@ TEST(FlightSplat, TheSumsDoNotDependOnTheThreadOrProcessCount) {
                        static_cast<float>(3.0 * rng.uniform()),
                        static_cast<float>(rng.uniform())});
   }
-  std::vector<double> one(f.lattice.slot_count() * 16, 0.0), two = one;
-  splat_flights(f.volume, 0, flights, 3, 1, one);
-  splat_flights(f.volume, 0, flights, 3, 2, two);
+  // Degree 3 and two sensors' peaks: 18 sums per slot.
+  const std::vector<Vec3> views = {normalize(Vec3(0.2, -1.0, 0.1)), Vec3(0, 0, 1)};
+  std::vector<double> one(f.lattice.slot_count() * 18, 0.0), two = one;
+  splat_flights(f.volume, 0, flights, 3, 1, one, single_process(), views);
+  splat_flights(f.volume, 0, flights, 3, 2, two, single_process(), views);
   EXPECT_EQ(0, std::memcmp(one.data(), two.data(), one.size() * sizeof(double)));
   EXPECT_GT(std::count_if(one.begin(), one.end(), [](double v) { return v != 0.0; }), 1000);
   // Ranks share the slabs and exchange their sums: every rank ends with the
@@ -111,7 +165,7 @@ TEST(FlightSplat, TheSumsDoNotDependOnTheThreadOrProcessCount) {
     std::vector<std::vector<double>> by_rank(static_cast<std::size_t>(ranks));
     testing::run_ranks(ranks, [&](const ProcessGroup& processes) {
       std::vector<double> sum(one.size(), 0.0);
-      splat_flights(f.volume, 0, flights, 3, 1, sum, processes);
+      splat_flights(f.volume, 0, flights, 3, 1, sum, processes, views);
       by_rank[static_cast<std::size_t>(processes.rank())] = std::move(sum);
     });
     for (int r = 0; r < ranks; ++r)

@@ -5,6 +5,10 @@
 // the visible scene does not meet it yet (below).
 #include <gtest/gtest.h>
 
+#include <cmath>
+
+#include "obscura/medium/gaussian_puff.h"
+#include "obscura/medium/grid_medium.h"
 #include "obscura/render/renderer.h"
 #include "obscura/scene/example_scenes.h"
 #include "support/image_error.h"
@@ -32,6 +36,52 @@ TEST(RadianceCacheIntegrator, StudyScenesAgreeWithThePathTracer) {
     EXPECT_LT(std::abs(testing::mean_error(cache.bands[0], reference.bands[0])), mean_tolerance)
         << name;
     EXPECT_LT(testing::systematic_rmse(cache.bands[0], reference.bands[0]), rmse_tolerance) << name;
+  }
+}
+
+// A dense visible puff (σs 2.5 /m at its centre, g 0.75) seen against the
+// sun by a narrow camera (6°, on its far side): the light it sends the
+// camera is scattered forwards and peaked, which the spherical harmonics
+// truncate; the sensor's forward peak (RadianceCacheSettings::sensor_peaks)
+// restores it. Measured: with it mean −1.35 %, RMSE 5.3 %; without it
+// +9.7 %, 12.8 % (the bias this guards against, held so that the scene
+// keeps showing it).
+TEST(RadianceCacheIntegrator, ANarrowSensorAgainstTheSunGetsTheForwardPeak) {
+  const auto against_the_sun = [](RenderMethod method) {
+    Scene scene = make_study_scene(StudyScene::kVisible, 16, 12, method, 48);
+    GaussianPuffSpec spec;
+    spec.center_m = {-2, -12, 3};
+    spec.radius_m = 2.5;
+    spec.extent_radii = 3.5;
+    spec.resolution = 48;
+    spec.wavelengths_um = {0.55};
+    spec.peak_sigma_a = {0.05};
+    spec.peak_sigma_s = {2.5};
+    spec.g = {0.75};
+    spec.ambient_temperature_k = 288;
+    spec.temperature_excess_k = 12;
+    scene.medium =
+        std::make_shared<GridMedium>(std::make_shared<VoxelGrid>(make_gaussian_puff(spec)));
+    scene.sensors[0].camera = PinholeCamera({-2, 28, 4}, {-2, -12, 3}, {0, 0, 1}, 6.0, 16, 12);
+    return scene;
+  };
+  Scene pt = against_the_sun(RenderMethod::kPathTracer);
+  pt.settings.samples_per_pixel = 4096;
+  const SensorImage reference = render_sensor(pt, pt.sensors[0]);
+  for (const bool peaks : {true, false}) {
+    Scene rc = against_the_sun(RenderMethod::kRadianceCache);
+    rc.settings.samples_per_pixel = 4;
+    rc.settings.radiance_cache.photons_per_node = 4000000;
+    rc.settings.radiance_cache.sensor_peaks = peaks;
+    const SensorImage cache = render_sensor(rc, rc.sensors[0]);
+    const double mean = testing::mean_error(cache.bands[0], reference.bands[0]),
+                 rmse = testing::systematic_rmse(cache.bands[0], reference.bands[0]);
+    if (peaks) {
+      EXPECT_LT(std::abs(mean), 0.03);
+      EXPECT_LT(rmse, 0.08);
+    } else {
+      EXPECT_GT(mean, 0.06);
+    }
   }
 }
 

@@ -9,6 +9,8 @@
 #include <functional>
 #include <numbers>
 
+#include "obscura/render/radiance_cache/cache_source.h"
+
 namespace obscura {
 namespace {
 
@@ -75,6 +77,35 @@ TEST(SphericalHarmonics, TruncationKeepsTheLowerBands) {
   spherical_harmonics(Vec3(0, 0, 1), y);
   EXPECT_NEAR(hg_convolved(c.data(), y, 0.6, 0), 2.0 * y[0], 1e-12);
   EXPECT_NEAR(hg_convolved(c.data(), y, 0.6, 1), 2.0 * y[0] + 0.6 * y[2], 1e-7);
+}
+
+// The forward peak the radiance cache splats towards a sensor
+// (hg_beyond_degree, cache_source.h) is the HG phase function less its
+// Legendre expansion to the cache's degree: over the sphere it has no
+// component on P_l for l ≤ degree, and on P_{degree+1} the HG's own
+// coefficient g^{degree+1} (∫ p_HG P_l dΩ = g^l).
+TEST(SphericalHarmonics, TheHgPeakBeyondTheDegreeHoldsOnlyTheHigherBands) {
+  const auto legendre = [](int l, double mu) {
+    const double p[5] = {1.0, mu, 0.5 * (3 * mu * mu - 1), 0.5 * mu * (5 * mu * mu - 3),
+                         (35 * mu * mu * mu * mu - 30 * mu * mu + 3) / 8.0};
+    return p[l];
+  };
+  for (const double g : {-0.4, 0.0, 0.5, 0.75})
+    for (int degree = 0; degree <= 3; ++degree)
+      for (int l = 0; l <= degree + 1; ++l) {
+        // ∫ q(μ) P_l(μ) 2π dμ by the midpoint rule on a fine grid in μ.
+        const int n = 400000;
+        double sum = 0.0;
+        for (int i = 0; i < n; ++i) {
+          const double mu = -1.0 + (i + 0.5) * 2.0 / n;
+          sum += hg_beyond_degree(g, mu, degree) * legendre(l, mu);
+        }
+        sum *= 2.0 * std::numbers::pi * 2.0 / n;
+        const double expected = l <= degree ? 0.0 : std::pow(g, l);
+        EXPECT_NEAR(sum, expected, 2e-5) << "g " << g << " degree " << degree << " l " << l;
+      }
+  // Isotropic scattering leaves nothing beyond degree 0.
+  EXPECT_NEAR(hg_beyond_degree(0.0, 0.3, 0), 0.0, 1e-15);
 }
 
 }  // namespace

@@ -16,9 +16,9 @@ namespace {
 class RayLight {
  public:
   RayLight(const Scene& scene, const RadianceCache& cache, const Ray& ray,
-           const SpectralNodes& nodes)
+           const SpectralNodes& nodes, int peak_channel = -1)
       : light_(ray.direction, scene.sun.enabled, scene.sun.enabled ? scene.sun.direction() : Vec3(),
-               sun_irradiance_.data(), cache.sh_degree()) {
+               sun_irradiance_.data(), cache.sh_degree(), peak_channel) {
     for (std::size_t j = 0; j < nodes.size(); ++j)
       sun_irradiance_[j] =
           scene.sun.enabled ? scene.sun.irradiance(nodes.nodes()[j].wavelength_um) : 0.0;
@@ -91,8 +91,9 @@ class CacheInScattering {
 
 std::uint64_t march_cache_lattice(const Scene& scene, const RadianceCache& cache,
                                   const CameraRay& camera, const SpectralNodes& nodes,
-                                  const int* record, double* radiance, double* transmittance) {
-  const RayLight light(scene, cache, camera.ray, nodes);
+                                  const int* record, int peak_channel, double* radiance,
+                                  double* transmittance) {
+  const RayLight light(scene, cache, camera.ray, nodes, peak_channel);
   const CacheSource source{light.planck(), light.light()};
   const int n = static_cast<int>(nodes.size());
   const LatticeVolume& volume = cache.volume();

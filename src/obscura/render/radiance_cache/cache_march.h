@@ -12,7 +12,8 @@
 //    any medium), reading the light from the records at each point.
 // Both add to radiance[j] and multiply transmittance[j] for the nodes of one
 // band, whose records are cache.volume().records(record[j]), and return the
-// cells visited.
+// cells visited. `peak_channel`: the ray's sensor's forward peak
+// (RadianceCache::peak_channel; only the lattice's records hold one).
 #include <cstdint>
 
 #include "obscura/render/integrator.h"
@@ -22,7 +23,8 @@ namespace obscura {
 
 std::uint64_t march_cache_lattice(const Scene& scene, const RadianceCache& cache,
                                   const CameraRay& camera, const SpectralNodes& nodes,
-                                  const int* record, double* radiance, double* transmittance);
+                                  const int* record, int peak_channel, double* radiance,
+                                  double* transmittance);
 
 std::uint64_t march_cache_medium(const Scene& scene, const RadianceCache& cache,
                                  const CameraRay& camera, const SpectralNodes& nodes,

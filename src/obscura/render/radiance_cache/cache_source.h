@@ -3,6 +3,8 @@
 // (render/lattice/lattice_view_march.h; docs/physics.md, "The radiance
 // cache"): σt and ε = σa B(T) + σs J, with the in-scattered radiance
 //   J(x, ω) = E_sun p_HG(ω_sun·ω) V_sun e^{−τ_sun(x)} + Σ_l g^l Σ_m Y_lm(ω) c_lm(x)
+//             [+ J_peak(x): the phase function beyond the harmonics, towards
+//               the ray's sensor, where the cache holds it]
 // from the record's light channels, g = (σs g)/σs. Plain data, so that a
 // CUDA device runs it too (docs/gpu.md); the CPU's march over the medium's
 // cells (cache_march.cpp) reads the same CacheLight.
@@ -30,20 +32,41 @@ OBSCURA_HOST_DEVICE inline double cache_clamped_g(double g) {
   return std::clamp(g, -0.999999, 0.999999);
 }
 
+// What the spherical harmonics to `degree` leave out of the HG phase
+// function at cosine μ (per steradian):
+//   p_HG(μ) − Σ_{l ≤ degree} (2l + 1)/(4π) g^l P_l(μ),
+// whose integral against any P_l, l ≤ degree, over the sphere is zero. The
+// radiance cache splats it towards a narrow sensor's viewing direction (the
+// forward peak the truncated expansion misses; flight_splat.h).
+OBSCURA_HOST_DEVICE inline double hg_beyond_degree(double g, double mu, int degree) {
+  const double p[4] = {1.0, mu, 0.5 * (3.0 * mu * mu - 1.0), 0.5 * mu * (5.0 * mu * mu - 3.0)};
+  double kept = 0.0, g_l = 1.0;
+  for (int l = 0; l <= degree && l < 4; ++l) {
+    kept += (2 * l + 1) * g_l * p[l];
+    g_l *= g;
+  }
+  return cache_hg(g, mu) - kept * (0.25 * std::numbers::inv_pi);
+}
+
 // What every point of one camera ray shares: the harmonics of the direction
-// the light travels (towards the camera), the sun's cosine with it, and the
-// sun's irradiance at each node of the march.
+// the light travels (towards the camera), the sun's cosine with it, the
+// sun's irradiance at each node of the march, and which light channel holds
+// the forward peak beyond the harmonics towards this ray's sensor.
 struct CacheLight {
   std::array<double, kMaxShCoefficients> y{};
   double mu_sun = 0.0;
   const double* sun_irradiance = nullptr;  // per node j, W m⁻² µm⁻¹ (0 without a sun)
   int sh_degree = 0;
+  int peak = -1;  // index from record::kTauSun (RadianceCache::peak_channel); −1: none
 
   // For a camera ray along unit `direction`; `to_sun` is the unit direction
   // towards the sun when `sun`.
   OBSCURA_HOST_DEVICE CacheLight(const Vec3& direction, bool sun, const Vec3& to_sun,
-                                 const double* irradiance, int degree)
-      : mu_sun(sun ? dot(to_sun, direction) : 0.0), sun_irradiance(irradiance), sh_degree(degree) {
+                                 const double* irradiance, int degree, int peak_channel = -1)
+      : mu_sun(sun ? dot(to_sun, direction) : 0.0),
+        sun_irradiance(irradiance),
+        sh_degree(degree),
+        peak(peak_channel) {
     spherical_harmonics(-direction, y);
   }
 
@@ -58,7 +81,8 @@ struct CacheLight {
     double j_in = 0.0;
     if (visibility > 0.0)
       j_in += sun_irradiance[j] * cache_hg(g, mu_sun) * visibility * std::exp(-tau);
-    return j_in + hg_convolved(light + 2, y, g, sh_degree);
+    j_in += hg_convolved(light + 2, y, g, sh_degree);
+    return peak >= 0 ? j_in + light[peak] : j_in;
   }
 };
 

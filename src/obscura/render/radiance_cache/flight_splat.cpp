@@ -11,6 +11,7 @@
 #include "obscura/core/parallel.h"
 #include "obscura/core/shared_ranges.h"
 #include "obscura/medium/lattice_walker.h"
+#include "obscura/render/radiance_cache/cache_source.h"
 #include "obscura/render/radiance_cache/spherical_harmonics.h"
 
 namespace obscura {
@@ -121,11 +122,14 @@ void share_slabs(const NodeLattice& lattice, int slabs, int count, const Process
 
 void splat_flights(const LatticeVolume& volume, int node, const std::vector<PhotonFlight>& flights,
                    int sh_degree, int threads, std::vector<double>& sum,
-                   const ProcessGroup& processes) {
+                   const ProcessGroup& processes, const std::vector<Vec3>& peak_views) {
   OBSCURA_CHECK(volume.has_medium());
   const NodeLattice& lattice = volume.lattice();
   const int count = sh_coefficient_count(sh_degree);
-  OBSCURA_CHECK(sum.size() == lattice.slot_count() * static_cast<std::size_t>(count));
+  const int peaks = static_cast<int>(peak_views.size());
+  OBSCURA_CHECK(peaks <= kMaxPeakViews);
+  const std::size_t per_slot = static_cast<std::size_t>(count + peaks);
+  OBSCURA_CHECK(sum.size() == lattice.slot_count() * per_slot);
   const std::array<int, 3>& dims = lattice.dims();
   const int slabs = (dims[2] + kSlabLayers - 1) / kSlabLayers;
   const double h = lattice.spacing_m();
@@ -171,20 +175,26 @@ void splat_flights(const LatticeVolume& volume, int node, const std::vector<Phot
       spherical_harmonics(flight.dir(), y);
       LatticeWalker walker(f.origin, f.direction, f.t0, f.t1, 1.0, {0, 0, cz0},
                            {dims[0] - 2, dims[1] - 2, cz1});
-      // The corners of the last cell and their ∫ hat σs dt so far: a node on
-      // the face into the next cell carries its sum on, so each node takes
-      // the harmonics once per run of cells rather than once per cell.
+      // The cosines with the sensors' directions, for the forward peak.
+      std::array<double, kMaxPeakViews> mu{};
+      for (int v = 0; v < peaks; ++v) mu[v] = dot(flight.dir(), peak_views[v]);
+      // The corners of the last cell and their ∫ hat σs dt so far (and
+      // ∫ hat σs q dt per sensor direction): a node on the face into the
+      // next cell carries its sums on, so each node takes the harmonics once
+      // per run of cells rather than once per cell.
       std::array<std::size_t, 8> held_slot;
       held_slot.fill(NodeLattice::kNoSlot);
       std::array<double, 8> held{};
+      std::array<std::array<double, kMaxPeakViews>, 8> held_peak{};
       std::array<int, 3> held_cell{-2, -2, -2};
       const double scale = flight.power * inv_volume;
       auto flush = [&](int c) {
         const int z = held_cell[2] + (c >> 2 & 1);
         if (held_slot[c] == NodeLattice::kNoSlot || z < z0 || z >= z1 || held[c] == 0.0) return;
-        double* acc = sum.data() + held_slot[c] * static_cast<std::size_t>(count);
+        double* acc = sum.data() + held_slot[c] * per_slot;
         const double wc = scale * held[c];
         for (int l = 0; l < count; ++l) acc[l] += wc * y[l];
+        for (int v = 0; v < peaks; ++v) acc[count + v] += scale * held_peak[c][v];
       };
       double ta, tb;
       while (walker.next(cell, ta, tb)) {
@@ -192,11 +202,17 @@ void splat_flights(const LatticeVolume& volume, int node, const std::vector<Phot
         cell_corners(cell, slot);
         // σs at the corners (zero in blocks the lattice does not hold), then
         // ∫ hat_c σs dt over the cell's piece for each corner c.
-        std::array<double, 8> corner_sigma_s;
+        std::array<double, 8> corner_sigma_s, corner_sigma_s_g{};
         for (int c = 0; c < 8; ++c)
           corner_sigma_s[c] =
               slot[c] == NodeLattice::kNoSlot ? 0.0 : records[slot[c] * stride + record::kSigmaS];
+        if (peaks > 0)
+          for (int c = 0; c < 8; ++c)
+            corner_sigma_s_g[c] = slot[c] == NodeLattice::kNoSlot
+                                      ? 0.0
+                                      : records[slot[c] * stride + record::kSigmaSG];
         std::array<double, 8> weight{};
+        std::array<std::array<double, kMaxPeakViews>, 8> peak_weight{};
         for (int q = 0; q < 3; ++q) {
           const double t = ta + (tb - ta) * kGaussT[q];
           double fx[3];
@@ -211,6 +227,14 @@ void splat_flights(const LatticeVolume& volume, int node, const std::vector<Phot
           }
           const double gw = kGaussW[q] * (tb - ta) * sigma_s;
           for (int c = 0; c < 8; ++c) weight[c] += gw * w[c];
+          if (peaks == 0 || !(sigma_s > 0.0)) continue;
+          double sigma_s_g = 0.0;
+          for (int c = 0; c < 8; ++c) sigma_s_g += w[c] * corner_sigma_s_g[c];
+          const double g = cache_clamped_g(sigma_s_g / sigma_s);
+          for (int v = 0; v < peaks; ++v) {
+            const double gq = gw * hg_beyond_degree(g, mu[v], sh_degree);
+            for (int c = 0; c < 8; ++c) peak_weight[c][v] += gq * w[c];
+          }
         }
         // One step along axis k: the held corners on the shared face move to
         // the opposite side of the new cell; the others are done.
@@ -223,21 +247,24 @@ void splat_flights(const LatticeVolume& volume, int node, const std::vector<Phot
         if (steps == 1) {
           const int side = cell[axis] > held_cell[axis] ? 1 : 0;
           for (int c = 0; c < 8; ++c)
-            if ((c >> axis & 1) == side)
+            if ((c >> axis & 1) == side) {
               weight[c ^ (1 << axis)] += held[c];
-            else
+              for (int v = 0; v < peaks; ++v) peak_weight[c ^ (1 << axis)][v] += held_peak[c][v];
+            } else {
               flush(c);
+            }
         } else {
           for (int c = 0; c < 8; ++c) flush(c);
         }
         held = weight;
+        held_peak = peak_weight;
         held_slot = slot;
         held_cell = cell;
       }
       for (int c = 0; c < 8; ++c) flush(c);
     }
   });
-  if (ranks > 1) share_slabs(lattice, slabs, count, processes, sum);
+  if (ranks > 1) share_slabs(lattice, slabs, static_cast<int>(per_slot), processes, sum);
 }
 
 }  // namespace obscura

@@ -26,17 +26,27 @@
 #include <vector>
 
 #include "obscura/core/process_group.h"
+#include "obscura/core/vec3.h"
 #include "obscura/render/lattice/lattice_volume.h"
 #include "obscura/render/photon_map/photon.h"
 
 namespace obscura {
 
+// The most sensors' viewing directions one splat serves with the phase
+// function's forward peak (what the padding of a light record holds).
+inline constexpr int kMaxPeakViews = 2;
+
 // Adds every flight's contributions for spectral node `node` (records
 // volume.records(node), which must hold the medium) to `sum`: per slot
-// sh_coefficient_count(sh_degree) values. Every process of `processes` must
-// call it with the same flights (a collective).
+// sh_coefficient_count(sh_degree) values, then one per direction ω of
+// `peak_views` (unit, the direction light leaves towards a sensor; at most
+// kMaxPeakViews): ΔΦ ∫_flight K σs q(ω_flight·ω; g) dt with q what the
+// harmonics leave out of the phase function (hg_beyond_degree,
+// cache_source.h) and g = (σs g)/σs along the flight. Every process of
+// `processes` must call it with the same flights (a collective).
 void splat_flights(const LatticeVolume& volume, int node, const std::vector<PhotonFlight>& flights,
                    int sh_degree, int threads, std::vector<double>& sum,
-                   const ProcessGroup& processes = single_process());
+                   const ProcessGroup& processes = single_process(),
+                   const std::vector<Vec3>& peak_views = {});
 
 }  // namespace obscura

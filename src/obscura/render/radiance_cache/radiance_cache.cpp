@@ -6,6 +6,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <numbers>
 #include <optional>
 
 #include "obscura/core/check.h"
@@ -112,11 +113,12 @@ RadianceCache::RadianceCache(const Scene& scene, const std::vector<SpectralNode>
   // What building it takes besides the records: the kernels' σs integrals,
   // the sun's depths per sample and one node's splat sums.
   const std::size_t slots = lattice_.slot_count();
-  const double bytes = static_cast<double>(slots) *
-                       (sizeof(float) * (2 * spectral_count_ + 1) + sizeof(double) * sh_count_);
+  const double bytes = static_cast<double>(slots) * (sizeof(float) * (2 * spectral_count_ + 1) +
+                                                     sizeof(double) * (sh_count_ + kMaxPeakViews));
   check_memory(static_cast<std::uint64_t>(bytes), "", "render/radiance_cache/voxel_m",
                fmt::format("building the radiance cache ({} nodes at {:.4g} m)", slots,
                            lattice_.spacing_m()));
+  choose_peak_views(scene);
   const std::vector<float> kernel_sigma_s = kernel_scattering(scene);
   const auto sun_start = std::chrono::steady_clock::now();
   compute_sun(scene, nodes);
@@ -127,6 +129,29 @@ RadianceCache::RadianceCache(const Scene& scene, const std::vector<SpectralNode>
 }
 
 std::size_t RadianceCache::memory_bytes() const { return volume_.memory_bytes(); }
+
+void RadianceCache::choose_peak_views(const Scene& scene) {
+  sensor_peak_.assign(scene.sensors.size(), -1);
+  const RadianceCacheSettings& settings = scene.settings.radiance_cache;
+  if (!settings.sensor_peaks || !splats_flights(settings)) return;
+  // The light record's padding after the harmonics holds the peaks.
+  const int room = std::min(kMaxPeakViews, volume_.stride() - record::kSh - sh_count_);
+  const double deg = std::numbers::pi / 180.0;
+  const double cos_narrow = std::cos(kMaxPeakHalfAngleDeg * deg), cos_same = std::cos(1.0 * deg);
+  for (std::size_t s = 0; s < scene.sensors.size(); ++s) {
+    const PinholeCamera& camera = scene.sensors[s].camera;
+    const Vec3 axis = camera.generate_ray(0.5 * camera.width(), 0.5 * camera.height()).direction;
+    if (dot(axis, camera.generate_ray(0.0, 0.0).direction) < cos_narrow) continue;
+    const Vec3 out = -axis;  // the light leaves towards the sensor
+    std::size_t v = 0;
+    while (v < peak_views_.size() && dot(peak_views_[v], out) < cos_same) ++v;
+    if (v == peak_views_.size()) {
+      if (static_cast<int>(v) == room) continue;
+      peak_views_.push_back(out);
+    }
+    sensor_peak_[s] = record::kSh - record::kTauSun + sh_count_ + static_cast<int>(v);
+  }
+}
 
 void RadianceCache::compute_sun(const Scene& scene, const std::vector<SpectralNode>& nodes) {
   if (!has_sun_) return;
@@ -290,10 +315,13 @@ void RadianceCache::splat(const Scene& scene, const SpectralNode& node, int inde
 
   t0 = std::chrono::steady_clock::now();
   const std::size_t slots = lattice_.slot_count();
-  std::vector<double> sum(slots * sh_count_, 0.0);
+  // Per slot the harmonics' sums, then (flights only) the sensors' peaks.
+  const int peaks = tracing.flights ? static_cast<int>(peak_views_.size()) : 0;
+  const std::size_t per_slot = static_cast<std::size_t>(sh_count_ + peaks);
+  std::vector<double> sum(slots * per_slot, 0.0);
   if (tracing.flights)
     splat_flights(volume_, index, traced.flights, sh_degree_, scene.settings.threads, sum,
-                  *processes_);
+                  *processes_, peak_views_);
   const int r = settings.kernel_radius_nodes;
   const double h = lattice_.spacing_m();
   const double volume = std::pow(r * h, 3);  // the kernel's normalisation (r h)³
@@ -313,7 +341,7 @@ void RadianceCache::splat(const Scene& scene, const SpectralNode& node, int inde
           const double w = wyz * std::max(0.0, 1.0 - std::abs(u.x - i) / r);
           const std::size_t slot = lattice_.slot_of(i, j, k);
           if (w == 0.0 || slot == NodeLattice::kNoSlot) continue;
-          double* s = sum.data() + slot * sh_count_;
+          double* s = sum.data() + slot * per_slot;
           const double weight = w * p.power / volume;
           for (int c = 0; c < sh_count_; ++c) s[c] += weight * y[c];
         }
@@ -331,8 +359,8 @@ void RadianceCache::splat(const Scene& scene, const SpectralNode& node, int inde
       const double norm = lerp(samples.data());
       if (!(norm > 0.0)) continue;
       float* out = volume_.record(index, slot) + record::kSh;
-      for (int c = 0; c < sh_count_; ++c)
-        out[c] = static_cast<float>(sum[slot * sh_count_ + c] / norm);
+      for (std::size_t c = 0; c < per_slot; ++c)
+        out[c] = static_cast<float>(sum[slot * per_slot + c] / norm);
     }
   });
   splat_seconds += seconds_since(t0);

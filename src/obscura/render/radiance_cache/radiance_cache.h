@@ -8,6 +8,13 @@
 //    sun's single scattering at a point is then
 //    σs p_HG(ω_sun·ω) E_sun V_sun e^{−τ_sun}, the phase function exact for
 //    each camera direction;
+//  * with the track-length splat, for up to two narrow sensors' viewing
+//    directions ω_v, what the truncated harmonics leave out of the phase
+//    function towards ω_v, splatted the same way:
+//      J_peak,v(n) = Σ_p ΔΦ_p q(ω_p·ω_v; g) K / ∫ K σs dV,
+//    q = p_HG − its expansion to the cache's degree (cache_source.h); a ray
+//    of that sensor adds it to J. Off the sensor's axis it is read as on it,
+//    hence only for sensors a few degrees wide;
 //  * everything else that is scattered (multiple
 //    scattering, the sky and surfaces' light, scattered volume emission) as
 //    spherical-harmonic coefficients c_lm = ∫ Y_lm L_in dω of the incident
@@ -46,7 +53,16 @@ class RadianceCache {
                 const ProcessGroup& processes = single_process(),
                 SunDepths sun_depths = SunDepths::kHere);
 
+  // Sensors whose image's half-diagonal is at most this get the phase
+  // function's forward peak beyond the harmonics (sensor_peaks).
+  static constexpr double kMaxPeakHalfAngleDeg = 5.0;
+
   const NodeLattice& lattice() const { return lattice_; }
+  // The light channel (from record::kTauSun, CacheLight::peak) holding the
+  // forward peak towards sensor `sensor`'s view, −1 where it has none.
+  int peak_channel(int sensor) const {
+    return sensor < static_cast<int>(sensor_peak_.size()) ? sensor_peak_[sensor] : -1;
+  }
   int sh_degree() const { return sh_degree_; }
   int sh_count() const { return sh_count_; }
   int spectral_count() const { return spectral_count_; }  // medium samples
@@ -65,6 +81,7 @@ class RadianceCache {
 
  private:
   void compute_sun(const Scene& scene, const std::vector<SpectralNode>& nodes);
+  void choose_peak_views(const Scene& scene);
   // ∫ K(x − x_n) σs(x) dV per slot and medium sample: the splats' denominator.
   std::vector<float> kernel_scattering(const Scene& scene) const;
   void splat(const Scene& scene, const SpectralNode& node, int index,
@@ -80,6 +97,10 @@ class RadianceCache {
   const ProcessGroup* processes_;
   int sh_degree_ = 2, sh_count_ = 9, spectral_count_ = 1;
   bool has_sun_ = false;
+  // The directions light leaves towards the sensors with a forward peak
+  // (unit, world), and per sensor its peak_channel.
+  std::vector<Vec3> peak_views_;
+  std::vector<int> sensor_peak_;
   SunDepths sun_depths_ = SunDepths::kHere;
   LatticeVolume volume_;
   std::uint64_t photons_stored_ = 0;

@@ -48,7 +48,8 @@ void RadianceCacheIntegrator::band_radiance(const CameraRay& camera, int sensor,
     const int* record = distinct_.index[sensor][band].data();
     workspace.segments +=
         cache_->volume().has_medium()
-            ? march_cache_lattice(scene_, *cache_, camera, nodes, record, radiance, transmittance)
+            ? march_cache_lattice(scene_, *cache_, camera, nodes, record,
+                                  cache_->peak_channel(sensor), radiance, transmittance)
             : march_cache_medium(scene_, *cache_, camera, nodes, record, radiance, transmittance);
   }
   std::array<double, kMaxSpectralNodes> behind;
