@@ -95,12 +95,20 @@ TEST(MarchJob, EmissionItemsEqualTheCpuMarchBitForBit) {
 
 TEST(MarchJob, CacheItemsEqualTheCpuMarchBitForBitAtEveryDegree) {
   for (const int degree : {0, 1, 2, 3}) {
-    const Scene scene = testing::sunlit_grid_scene(degree);
+    Scene scene = testing::sunlit_grid_scene(degree);
+    // A narrow sensor, so that the cache holds a forward peak towards it and
+    // both marches read it.
+    const Vec3 centre = scene.medium->bounds().center();
+    Sensor narrow;
+    narrow.name = "narrow";
+    narrow.camera = PinholeCamera(centre + Vec3(5, -60, 8), centre, {0, 0, 1}, 3.0, 8, 8);
+    scene.sensors.push_back(narrow);
     const SpectralNodes band(BandQuadrature(Band::flat("b", 3.2, 4.9), 3, 0.0),
                              scene.medium->wavelengths_um());
     const std::vector<SpectralNode> nodes(band.nodes());
     const RadianceCache cache(scene, nodes);
     ASSERT_TRUE(cache.volume().has_medium());
+    ASSERT_GE(cache.peak_channel(0), 0) << "degree " << degree;
     HostExecutor executor(2);
     executor.load(testing::frame_of(cache.volume(), nodes, &scene));
     MarchRequest request;

@@ -5,11 +5,14 @@
 
 #include <cmath>
 #include <cstring>
+#include <string>
 
 #include "medium/test_grids.h"
 #include "obscura/medium/grid_medium.h"
 #include "obscura/medium/homogeneous_medium.h"
+#include "obscura/render/radiance_cache/radiance_cache.h"
 #include "support/render_helpers.h"
+#include "support/sunlit_grid.h"
 
 namespace obscura {
 namespace {
@@ -93,6 +96,45 @@ TEST(EmissionAbsorptionBackground, ACloudShadesTheSunlitGround) {
   for (std::size_t p = 0; p < a.bands[0].radiance.size(); ++p) {
     EXPECT_GT(a.bands[0].radiance[p], 0.0f);
     EXPECT_NEAR(b.bands[0].radiance[p] / a.bands[0].radiance[p], std::exp(-0.5), 1e-4);
+  }
+}
+
+// Which sensors get a forward peak (RadianceCache::peak_channel): narrow
+// ones (half-diagonal ≤ 5°), one channel shared by sensors within 1° of each
+// other, as many directions as the light record's padding holds (one at
+// degree 2, two at degree 3), none when the scene turns it off.
+TEST(RadianceCache, ForwardPeaksGoToNarrowSensorsAsFarAsTheRecordsHoldThem) {
+  for (const int degree : {2, 3}) {
+    for (const bool on : {true, false}) {
+      Scene scene = testing::sunlit_grid_scene(degree);
+      scene.settings.radiance_cache.sensor_peaks = on;
+      const Vec3 c = scene.medium->bounds().center();
+      const auto add = [&](const Vec3& from, double fov_deg) {
+        Sensor s;
+        s.name = "s" + std::to_string(scene.sensors.size());
+        s.camera = PinholeCamera(c + from, c, {0, 0, 1}, fov_deg, 16, 12);
+        scene.sensors.push_back(s);
+      };
+      add({0, -80, 5}, 3.0);    // narrow
+      add({0.5, -80, 5}, 2.0);  // narrow, 0.4° from the first: shares its peak
+      add({0, -80, 5}, 40.0);   // wide: none
+      add({80, 0, 5}, 3.0);     // narrow, another direction: a second channel if there is room
+      const std::vector<SpectralNode> nodes(
+          SpectralNodes(BandQuadrature(Band::flat("b", 3.2, 4.9), 1, 0.0),
+                        scene.medium->wavelengths_um())
+              .nodes());
+      const RadianceCache cache(scene, nodes);
+      if (!on) {
+        for (int s = 0; s < 4; ++s) EXPECT_EQ(cache.peak_channel(s), -1);
+        continue;
+      }
+      const int first = record::kSh - record::kTauSun + sh_coefficient_count(degree);
+      EXPECT_EQ(cache.peak_channel(0), first) << "degree " << degree;
+      EXPECT_EQ(cache.peak_channel(1), first);
+      EXPECT_EQ(cache.peak_channel(2), -1);
+      EXPECT_EQ(cache.peak_channel(3), degree == 3 ? first + 1 : -1);
+      EXPECT_EQ(cache.peak_channel(4), -1);  // no such sensor
+    }
   }
 }
 
