@@ -89,10 +89,10 @@ struct RadianceCacheSettings {
   bool track_length = true;
   // "sensor_peaks": the phase function's forward peak beyond the harmonics
   // is splatted towards each narrow sensor's viewing direction (its image's
-  // half-diagonal ≤ kMaxPeakHalfAngleDeg, sensors within 1° of each other
-  // sharing one, at most two directions: what a light record's padding
-  // holds) with the track-length estimate, so that a cloud seen against the
-  // sun is not dimmed or brightened by the truncation
+  // half-diagonal ≤ 5°, sensors within 1° of each other sharing one, as many
+  // directions as a light record's padding holds: one at SH degree 0 or 2,
+  // two at 1 or 3) with the track-length estimate, so that a cloud seen
+  // against the sun is not dimmed or brightened by the truncation
   // (render/radiance_cache/radiance_cache.h).
   bool sensor_peaks = true;
 };

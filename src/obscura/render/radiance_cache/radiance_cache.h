@@ -8,9 +8,10 @@
 //    sun's single scattering at a point is then
 //    σs p_HG(ω_sun·ω) E_sun V_sun e^{−τ_sun}, the phase function exact for
 //    each camera direction;
-//  * with the track-length splat, for up to two narrow sensors' viewing
-//    directions ω_v, what the truncated harmonics leave out of the phase
-//    function towards ω_v, splatted the same way:
+//  * with the track-length splat, for the viewing directions ω_v of narrow
+//    sensors (as many as a record's padding holds: one or two), what the
+//    truncated harmonics leave out of the phase function towards ω_v,
+//    splatted the same way:
 //      J_peak,v(n) = Σ_p ΔΦ_p q(ω_p·ω_v; g) K / ∫ K σs dV,
 //    q = p_HG − its expansion to the cache's degree (cache_source.h); a ray
 //    of that sensor adds it to J. Off the sensor's axis it is read as on it,
