@@ -34,18 +34,36 @@ OBSCURA_HOST_DEVICE inline double cache_clamped_g(double g) {
 
 // What the spherical harmonics to `degree` leave out of the HG phase
 // function at cosine μ (per steradian):
-//   p_HG(μ) − Σ_{l ≤ degree} (2l + 1)/(4π) g^l P_l(μ),
+//   q(μ; g) = p_HG(μ) − Σ_{l ≤ degree} (2l + 1)/(4π) g^l P_l(μ),
 // whose integral against any P_l, l ≤ degree, over the sphere is zero. The
 // radiance cache splats it towards a narrow sensor's viewing direction (the
-// forward peak the truncated expansion misses; flight_splat.h).
-OBSCURA_HOST_DEVICE inline double hg_beyond_degree(double g, double mu, int degree) {
-  const double p[4] = {1.0, mu, 0.5 * (3.0 * mu * mu - 1.0), 0.5 * mu * (5.0 * mu * mu - 3.0)};
-  double kept = 0.0, g_l = 1.0;
-  for (int l = 0; l <= degree && l < 4; ++l) {
-    kept += (2 * l + 1) * g_l * p[l];
-    g_l *= g;
+// forward peak the truncated expansion misses; flight_splat.h), for one μ
+// per flight and many g along it: the P_l(μ) are kept.
+class HgBeyondDegree {
+ public:
+  HgBeyondDegree() = default;
+  OBSCURA_HOST_DEVICE HgBeyondDegree(double mu, int degree)
+      : mu_(mu),
+        p_{1.0, mu, 0.5 * (3.0 * mu * mu - 1.0), 0.5 * mu * (5.0 * mu * mu - 3.0)},
+        degree_(degree < 3 ? degree : 3) {}
+
+  OBSCURA_HOST_DEVICE double operator()(double g) const {
+    double kept = 0.0, g_l = 1.0;
+    for (int l = 0; l <= degree_; ++l) {
+      kept += (2 * l + 1) * g_l * p_[l];
+      g_l *= g;
+    }
+    return cache_hg(g, mu_) - kept * (0.25 * std::numbers::inv_pi);
   }
-  return cache_hg(g, mu) - kept * (0.25 * std::numbers::inv_pi);
+
+ private:
+  double mu_ = 0.0;
+  double p_[4] = {};  // P_0 … P_3 at μ
+  int degree_ = 0;
+};
+
+OBSCURA_HOST_DEVICE inline double hg_beyond_degree(double g, double mu, int degree) {
+  return HgBeyondDegree(mu, degree)(g);
 }
 
 // What every point of one camera ray shares: the harmonics of the direction

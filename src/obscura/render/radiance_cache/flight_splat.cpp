@@ -175,9 +175,11 @@ void splat_flights(const LatticeVolume& volume, int node, const std::vector<Phot
       spherical_harmonics(flight.dir(), y);
       LatticeWalker walker(f.origin, f.direction, f.t0, f.t1, 1.0, {0, 0, cz0},
                            {dims[0] - 2, dims[1] - 2, cz1});
-      // The cosines with the sensors' directions, for the forward peak.
-      std::array<double, kMaxPeakViews> mu{};
-      for (int v = 0; v < peaks; ++v) mu[v] = dot(flight.dir(), peak_views[v]);
+      // The forward peak towards each sensor's direction, at the flight's
+      // cosine with it (only g changes along the flight).
+      std::array<HgBeyondDegree, kMaxPeakViews> beyond;
+      for (int v = 0; v < peaks; ++v)
+        beyond[v] = HgBeyondDegree(dot(flight.dir(), peak_views[v]), sh_degree);
       // The corners of the last cell and their ∫ hat σs dt so far (and
       // ∫ hat σs q dt per sensor direction): a node on the face into the
       // next cell carries its sums on, so each node takes the harmonics once
@@ -200,17 +202,16 @@ void splat_flights(const LatticeVolume& volume, int node, const std::vector<Phot
       while (walker.next(cell, ta, tb)) {
         if (!(tb > ta) || cell[2] + 1 < z0 || cell[2] >= z1) continue;
         cell_corners(cell, slot);
-        // σs at the corners (zero in blocks the lattice does not hold), then
-        // ∫ hat_c σs dt over the cell's piece for each corner c.
-        std::array<double, 8> corner_sigma_s, corner_sigma_s_g{};
-        for (int c = 0; c < 8; ++c)
-          corner_sigma_s[c] =
-              slot[c] == NodeLattice::kNoSlot ? 0.0 : records[slot[c] * stride + record::kSigmaS];
-        if (peaks > 0)
-          for (int c = 0; c < 8; ++c)
-            corner_sigma_s_g[c] = slot[c] == NodeLattice::kNoSlot
-                                      ? 0.0
-                                      : records[slot[c] * stride + record::kSigmaSG];
+        // σs (and σs g, for the forward peak's g) at the corners (zero in
+        // blocks the lattice does not hold), then ∫ hat_c σs dt over the
+        // cell's piece for each corner c.
+        std::array<double, 8> corner_sigma_s{}, corner_sigma_s_g{};
+        for (int c = 0; c < 8; ++c) {
+          if (slot[c] == NodeLattice::kNoSlot) continue;
+          const float* r = records + slot[c] * stride;
+          corner_sigma_s[c] = r[record::kSigmaS];
+          if (peaks > 0) corner_sigma_s_g[c] = r[record::kSigmaSG];
+        }
         std::array<double, 8> weight{};
         std::array<std::array<double, kMaxPeakViews>, 8> peak_weight{};
         for (int q = 0; q < 3; ++q) {
@@ -232,7 +233,7 @@ void splat_flights(const LatticeVolume& volume, int node, const std::vector<Phot
           for (int c = 0; c < 8; ++c) sigma_s_g += w[c] * corner_sigma_s_g[c];
           const double g = cache_clamped_g(sigma_s_g / sigma_s);
           for (int v = 0; v < peaks; ++v) {
-            const double gq = gw * hg_beyond_degree(g, mu[v], sh_degree);
+            const double gq = gw * beyond[v](g);
             for (int c = 0; c < 8; ++c) peak_weight[c][v] += gq * w[c];
           }
         }
