@@ -23,10 +23,14 @@
 namespace obscura {
 namespace {
 
+// The grids' shapes: longest along z, x and y in turn, so that the slabs the
+// splat is cut into (along the lattice's longest axis) lie across each axis.
+const GridDims kShapes[] = {{9, 7, 22}, {26, 7, 9}, {8, 24, 6}};
+
 // A random rotated grid; with `g`, one asymmetry everywhere (a cloud of one
 // material) instead of a random one per voxel.
-std::shared_ptr<VoxelGrid> fixture_grid(std::optional<float> g = std::nullopt) {
-  auto grid = testing::random_grid({9, 7, 12}, 2, 21, rotation_from_euler_deg({15, -25, 40}));
+std::shared_ptr<VoxelGrid> fixture_grid(const GridDims& dims, std::optional<float> g) {
+  auto grid = testing::random_grid(dims, 2, 21, rotation_from_euler_deg({15, -25, 40}));
   if (g)
     for (int s = 0; s < 2; ++s)
       for (std::size_t v = 0; v < grid->dims().count(); ++v) grid->g(s)[v] = *g;
@@ -34,7 +38,8 @@ std::shared_ptr<VoxelGrid> fixture_grid(std::optional<float> g = std::nullopt) {
 }
 
 struct Fixture {
-  explicit Fixture(std::optional<float> g = std::nullopt) : grid(fixture_grid(g)) {}
+  explicit Fixture(const GridDims& dims = kShapes[0], std::optional<float> g = std::nullopt)
+      : grid(fixture_grid(dims, g)) {}
   std::shared_ptr<VoxelGrid> grid;
   GridMedium medium{grid};
   NodeLattice lattice{medium, 0.0, 0.0, 1u << 30};
@@ -80,8 +85,29 @@ std::vector<double> brute_force(const Fixture& f, const PhotonFlight& flight,
   return out;
 }
 
-TEST(FlightSplat, EachNodeGetsTheKernelIntegralAlongTheFlight) {
-  const Fixture f;
+// The index of the lattice's longest axis.
+int longest_axis(const NodeLattice& lattice) {
+  const std::array<int, 3>& d = lattice.dims();
+  return static_cast<int>(std::max_element(d.begin(), d.end()) - d.begin());
+}
+
+TEST(FlightSplat, TheShapesCutTheSlabsAcrossEachAxis) {
+  // What the tests below rely on: slabs of 8 node layers along each axis in
+  // turn, at least three of them.
+  for (int a = 0; a < 3; ++a) {
+    const Fixture f(kShapes[a]);
+    EXPECT_EQ(longest_axis(f.lattice), (a + 2) % 3) << "shape " << a;
+    const std::array<int, 3>& d = f.lattice.dims();
+    EXPECT_GT(d[static_cast<std::size_t>(longest_axis(f.lattice))], 16)
+        << "shape " << a << ": " << d[0] << " x " << d[1] << " x " << d[2] << " nodes";
+  }
+}
+
+class FlightSplatShapes : public ::testing::TestWithParam<int> {};
+
+TEST_P(FlightSplatShapes, EachNodeGetsTheKernelIntegralAlongTheFlight) {
+  const GridDims& shape = kShapes[GetParam()];
+  const Fixture f(shape);
   const BBox3 box = f.medium.bounds();
   Rng rng(4, 0);
   for (int n = 0; n < 6; ++n) {
@@ -118,7 +144,7 @@ TEST(FlightSplat, EachNodeGetsTheKernelIntegralAlongTheFlight) {
     // g near the peak, only to a few per cent).
     const std::vector<Vec3> views = {normalize(flight.dir() + Vec3(0.05, -0.03, 0.02)),
                                      normalize(cross(flight.dir(), Vec3(0.3, 0.5, 0.8)))};
-    const Fixture one_g(0.7f);
+    const Fixture one_g(shape, 0.7f);
     std::vector<double> plain(f.lattice.slot_count() * 9, 0.0),
         with_peaks(f.lattice.slot_count() * 11, 0.0);
     splat_flights(one_g.volume, 0, {flight}, 2, 2, plain);
@@ -138,8 +164,8 @@ TEST(FlightSplat, EachNodeGetsTheKernelIntegralAlongTheFlight) {
   }
 }
 
-TEST(FlightSplat, TheSumsDoNotDependOnTheThreadOrProcessCount) {
-  const Fixture f;
+TEST_P(FlightSplatShapes, TheSumsDoNotDependOnTheThreadOrProcessCount) {
+  const Fixture f(kShapes[GetParam()]);
   std::vector<PhotonFlight> flights;
   Rng rng(8, 0);
   const BBox3 box = f.medium.bounds();
@@ -160,7 +186,7 @@ TEST(FlightSplat, TheSumsDoNotDependOnTheThreadOrProcessCount) {
   EXPECT_EQ(0, std::memcmp(one.data(), two.data(), one.size() * sizeof(double)));
   EXPECT_GT(std::count_if(one.begin(), one.end(), [](double v) { return v != 0.0; }), 1000);
   // Ranks share the slabs and exchange their sums: every rank ends with the
-  // bits of one process (the 12 node layers make 3 slabs, dealt unevenly).
+  // bits of one process (at least 3 slabs, dealt unevenly).
   for (const int ranks : {2, 3, 5}) {
     std::vector<std::vector<double>> by_rank(static_cast<std::size_t>(ranks));
     testing::run_ranks(ranks, [&](const ProcessGroup& processes) {
@@ -174,6 +200,8 @@ TEST(FlightSplat, TheSumsDoNotDependOnTheThreadOrProcessCount) {
           << ranks << " ranks, rank " << r;
   }
 }
+
+INSTANTIATE_TEST_SUITE_P(LongestAxis, FlightSplatShapes, ::testing::Values(0, 1, 2));
 
 // On the same walks (flights do not change the random numbers drawn), the
 // total scattered power by tracks, Σ ΔΦ ∫ σs dt, equals the collisions',

@@ -17,9 +17,23 @@
 namespace obscura {
 namespace {
 
-// Node layers (lattice z) per task: a cell on a slab's edge is integrated by
-// both slabs, each keeping its own corners.
-constexpr int kSlabLayers = 4;
+// Node layers per task, across the lattice's longest axis (a cloud is wider
+// than it is tall: the demo's lattice is 153 × 50 × 23 nodes, whose 6 slabs
+// of z layers held 945 000 and 34 000 flights); a cell on a slab's edge is
+// integrated by both slabs, each keeping its own corners. A slab of whole
+// blocks (NodeLattice::kBlock) owns whole runs of slots when processes
+// share their sums.
+constexpr int kSlabLayers = 8;
+
+// The slabs' axis: the lattice's longest, so that there are as many slabs as
+// can be for threads and processes to share.
+int slab_axis(const NodeLattice& lattice) {
+  const std::array<int, 3>& dims = lattice.dims();
+  int axis = 0;
+  for (int a = 1; a < 3; ++a)
+    if (dims[a] > dims[axis]) axis = a;
+  return axis;
+}
 
 // Three-point Gauss–Legendre on [0, 1].
 constexpr double kGaussT[3] = {0.11270166537925831, 0.5, 0.88729833462074169};
@@ -41,11 +55,12 @@ bool to_lattice(const LatticeVolume& volume, const PhotonFlight& f, LatticeFligh
          out.t1 > out.t0;
 }
 
-// Clips the flight to lattice z in [z_lo, z_hi]; false if nothing is left.
-bool clip_to_layers(LatticeFlight& f, double z_lo, double z_hi) {
-  const double o = f.origin.z, d = f.direction.z;
-  if (d == 0.0) return o >= z_lo && o <= z_hi && f.t1 > f.t0;
-  double a = (z_lo - o) / d, b = (z_hi - o) / d;
+// Clips the flight to lattice coordinate `axis` in [lo, hi]; false if
+// nothing is left.
+bool clip_to_layers(LatticeFlight& f, int axis, double lo, double hi) {
+  const double o = f.origin[axis], d = f.direction[axis];
+  if (d == 0.0) return o >= lo && o <= hi && f.t1 > f.t0;
+  double a = (lo - o) / d, b = (hi - o) / d;
   if (a > b) std::swap(a, b);
   f.t0 = std::max(f.t0, a);
   f.t1 = std::min(f.t1, b);
@@ -98,15 +113,15 @@ class CellCorners {
 
 // The sums of each process's slabs' nodes, shared (core/shared_ranges.h):
 // afterwards every process holds every slab's sums.
-void share_slabs(const NodeLattice& lattice, int slabs, int count, const ProcessGroup& processes,
-                 std::vector<double>& sum) {
+void share_slabs(const NodeLattice& lattice, int axis, int slabs, int count,
+                 const ProcessGroup& processes, std::vector<double>& sum) {
   const auto ranks = static_cast<std::size_t>(processes.size());
   const auto n = static_cast<std::size_t>(count);
   // Per process, the runs of consecutive slots of its slabs' nodes.
   std::vector<IndexRanges> ranges(ranks);
   for (std::size_t slot = 0; slot < lattice.slot_count(); ++slot) {
     if (!lattice.slot_inside(slot)) continue;
-    const int s = lattice.slot_node(slot)[2] / kSlabLayers;
+    const int s = lattice.slot_node(slot)[axis] / kSlabLayers;
     if (s >= slabs) continue;
     IndexRanges& own = ranges[static_cast<std::size_t>(s) % ranks];
     if (!own.empty() && own.back().second == slot * n)
@@ -131,7 +146,8 @@ void splat_flights(const LatticeVolume& volume, int node, const std::vector<Phot
   const std::size_t per_slot = static_cast<std::size_t>(count + peaks);
   OBSCURA_CHECK(sum.size() == lattice.slot_count() * per_slot);
   const std::array<int, 3>& dims = lattice.dims();
-  const int slabs = (dims[2] + kSlabLayers - 1) / kSlabLayers;
+  const int axis = slab_axis(lattice);
+  const int slabs = (dims[axis] + kSlabLayers - 1) / kSlabLayers;
   const double h = lattice.spacing_m();
   const double inv_volume = 1.0 / (h * h * h);  // the tent kernel of one spacing, per m³
   const float* records = volume.records(node);
@@ -148,9 +164,10 @@ void splat_flights(const LatticeVolume& volume, int node, const std::vector<Phot
   for (std::size_t i = 0; i < flights.size(); ++i) {
     LatticeFlight f;
     if (!to_lattice(volume, flights[i], f)) continue;
-    const double za = f.origin.z + f.t0 * f.direction.z, zb = f.origin.z + f.t1 * f.direction.z;
-    const int lo = std::clamp(static_cast<int>(std::floor(std::min(za, zb))), 0, dims[2] - 2);
-    const int hi = std::clamp(static_cast<int>(std::floor(std::max(za, zb))), 0, dims[2] - 2) + 1;
+    const double a = f.origin[axis] + f.t0 * f.direction[axis],
+                 b = f.origin[axis] + f.t1 * f.direction[axis];
+    const int lo = std::clamp(static_cast<int>(std::floor(std::min(a, b))), 0, dims[axis] - 2);
+    const int hi = std::clamp(static_cast<int>(std::floor(std::max(a, b))), 0, dims[axis] - 2) + 1;
     for (int s = lo / kSlabLayers; s <= std::min(hi / kSlabLayers, slabs - 1); ++s)
       if (mine(s)) reach[static_cast<std::size_t>(s)].push_back(static_cast<std::uint32_t>(i));
   }
@@ -159,7 +176,8 @@ void splat_flights(const LatticeVolume& volume, int node, const std::vector<Phot
                           (rank < static_cast<std::size_t>(slabs) % ranks ? 1 : 0);
   parallel_for(own, threads, [&](std::size_t task) {
     const std::size_t s = task * ranks + rank;
-    const int z0 = static_cast<int>(s) * kSlabLayers, z1 = std::min(z0 + kSlabLayers, dims[2]);
+    // Node layers n0 … n1 − 1 along the slabs' axis.
+    const int n0 = static_cast<int>(s) * kSlabLayers, n1 = std::min(n0 + kSlabLayers, dims[axis]);
     std::array<double, kMaxShCoefficients> y;
     std::array<std::size_t, 8> slot;
     std::array<int, 3> cell;
@@ -168,13 +186,15 @@ void splat_flights(const LatticeVolume& volume, int node, const std::vector<Phot
       const PhotonFlight& flight = flights[i];
       LatticeFlight f;
       to_lattice(volume, flight, f);
-      // The part of it in the cells whose corners reach node layers z0 … z1 − 1,
-      // z from z0 − 1 to z1 (the walker must start inside its range).
-      const int cz0 = std::max(z0 - 1, 0), cz1 = std::min(z1 - 1, dims[2] - 2);
-      if (!clip_to_layers(f, cz0, cz1 + 1)) continue;
+      // The part of it in the cells whose corners reach the slab's node
+      // layers, cells n0 − 1 … n1 − 1 (the walker must start inside its range).
+      const int c0 = std::max(n0 - 1, 0), c1 = std::min(n1 - 1, dims[axis] - 2);
+      if (!clip_to_layers(f, axis, c0, c1 + 1)) continue;
+      std::array<int, 3> cell_lo{0, 0, 0}, cell_hi{dims[0] - 2, dims[1] - 2, dims[2] - 2};
+      cell_lo[axis] = c0;
+      cell_hi[axis] = c1;
       spherical_harmonics(flight.dir(), y);
-      LatticeWalker walker(f.origin, f.direction, f.t0, f.t1, 1.0, {0, 0, cz0},
-                           {dims[0] - 2, dims[1] - 2, cz1});
+      LatticeWalker walker(f.origin, f.direction, f.t0, f.t1, 1.0, cell_lo, cell_hi);
       // The forward peak towards each sensor's direction, at the flight's
       // cosine with it (only g changes along the flight).
       std::array<HgBeyondDegree, kMaxPeakViews> beyond;
@@ -191,8 +211,8 @@ void splat_flights(const LatticeVolume& volume, int node, const std::vector<Phot
       std::array<int, 3> held_cell{-2, -2, -2};
       const double scale = flight.power * inv_volume;
       auto flush = [&](int c) {
-        const int z = held_cell[2] + (c >> 2 & 1);
-        if (held_slot[c] == NodeLattice::kNoSlot || z < z0 || z >= z1 || held[c] == 0.0) return;
+        const int n = held_cell[axis] + (c >> axis & 1);
+        if (held_slot[c] == NodeLattice::kNoSlot || n < n0 || n >= n1 || held[c] == 0.0) return;
         double* acc = sum.data() + held_slot[c] * per_slot;
         const double wc = scale * held[c];
         for (int l = 0; l < count; ++l) acc[l] += wc * y[l];
@@ -200,7 +220,7 @@ void splat_flights(const LatticeVolume& volume, int node, const std::vector<Phot
       };
       double ta, tb;
       while (walker.next(cell, ta, tb)) {
-        if (!(tb > ta) || cell[2] + 1 < z0 || cell[2] >= z1) continue;
+        if (!(tb > ta) || cell[axis] + 1 < n0 || cell[axis] >= n1) continue;
         cell_corners(cell, slot);
         // σs (and σs g, for the forward peak's g) at the corners (zero in
         // blocks the lattice does not hold), then ∫ hat_c σs dt over the
@@ -237,20 +257,21 @@ void splat_flights(const LatticeVolume& volume, int node, const std::vector<Phot
             for (int c = 0; c < 8; ++c) peak_weight[c][v] += gq * w[c];
           }
         }
-        // One step along axis k: the held corners on the shared face move to
+        // One step along one axis: the held corners on the shared face move to
         // the opposite side of the new cell; the others are done.
-        int axis = -1, steps = 0;
+        int step_axis = -1, steps = 0;
         for (int a = 0; a < 3; ++a)
           if (cell[a] != held_cell[a]) {
-            axis = a;
+            step_axis = a;
             steps += std::abs(cell[a] - held_cell[a]);
           }
         if (steps == 1) {
-          const int side = cell[axis] > held_cell[axis] ? 1 : 0;
+          const int side = cell[step_axis] > held_cell[step_axis] ? 1 : 0;
           for (int c = 0; c < 8; ++c)
-            if ((c >> axis & 1) == side) {
-              weight[c ^ (1 << axis)] += held[c];
-              for (int v = 0; v < peaks; ++v) peak_weight[c ^ (1 << axis)][v] += held_peak[c][v];
+            if ((c >> step_axis & 1) == side) {
+              weight[c ^ (1 << step_axis)] += held[c];
+              for (int v = 0; v < peaks; ++v)
+                peak_weight[c ^ (1 << step_axis)][v] += held_peak[c][v];
             } else {
               flush(c);
             }
@@ -265,7 +286,7 @@ void splat_flights(const LatticeVolume& volume, int node, const std::vector<Phot
       for (int c = 0; c < 8; ++c) flush(c);
     }
   });
-  if (ranks > 1) share_slabs(lattice, slabs, static_cast<int>(per_slot), processes, sum);
+  if (ranks > 1) share_slabs(lattice, axis, slabs, static_cast<int>(per_slot), processes, sum);
 }
 
 }  // namespace obscura
