@@ -9,11 +9,22 @@
 #      quick demo's 64×32 px, shared by cases.
 # The tables of 1 and N ranks must be the same bytes (time_series.csv,
 # metrics.csv; the study's results.csv but for its wall times), else it stops.
-#   bench/bench_mpi.sh [RANKS]       (default 2; needs a build with MPI)
+#   bench/bench_mpi.sh [RANKS [WORK...]]
+# RANKS defaults to 2 (needs a build with MPI); WORK is any of frames, tiles
+# and study (default all three). On a shared machine wall times wander by
+# 20 % between runs: REPEAT=K runs each piece K times as interleaved pairs
+# (1 rank, then N ranks) and reports every pair and the median speed-up.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 OBSCURA=${OBSCURA:-$PWD/build/release/apps/obscura/obscura}
 RANKS=${1:-2}
+shift $(($# > 0 ? 1 : 0))
+PIECES=${*:-frames tiles study}
+REPEAT=${REPEAT:-1}
+for piece in $PIECES; do
+  case $piece in frames | tiles | study) ;; *) echo "bench_mpi: unknown work '$piece' (frames, tiles or study)" >&2; exit 2 ;; esac
+done
+wants() { [[ " $PIECES " == *" $1 "* ]]; }
 MPIRUN=${MPIRUN:-mpirun --allow-run-as-root --oversubscribe}
 WORK=$(mktemp -d /tmp/obscura-bench-mpi.XXXXXX)
 trap 'rm -rf "$WORK"' EXIT
@@ -28,7 +39,18 @@ seconds() {
 }
 report() {
   awk -v what="$1" -v a="$2" -v b="$3" -v n="$RANKS" 'BEGIN {
-    printf "%-46s 1 rank %7.1f s   %d ranks %7.1f s   speed-up %.2f\n", what, a, n, b, a / b }'
+    printf "%-46s 1 rank %7.2f s   %d ranks %7.2f s   speed-up %.2f\n", what, a, n, b, a / b }'
+  echo "$2 $3" >>"$WORK/pairs"
+}
+# After REPEAT > 1 pairs of one piece: the median of their speed-ups.
+median() {
+  if [ "$REPEAT" -gt 1 ]; then
+    awk '{ print $1 / $2 }' "$WORK/pairs" | sort -g |
+      awk -v what="$1" '{ v[NR] = $1 } END {
+        m = NR % 2 ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2
+        printf "%-46s median speed-up %.2f of %d pairs (%.2f to %.2f)\n", what, m, NR, v[1], v[NR] }'
+  fi
+  rm -f "$WORK/pairs"
 }
 same() { for f in "$@"; do cmp -s "$WORK/one/$f" "$WORK/many/$f" || { echo "bench_mpi: $f differs between 1 and $RANKS ranks" >&2; exit 1; }; done; }
 
@@ -49,18 +71,29 @@ for r in s.get("regions", []):
 json.dump(s, open(f"{w}/big.json", "w"))
 PY
 
-rm -rf "$WORK/one" "$WORK/many"
-a=$(seconds "$OBSCURA" render "$WORK/demo.json" -o "$WORK/one" --time 0:30:6 --threads 1)
-b=$(seconds $MPIRUN -np "$RANKS" "$OBSCURA" render "$WORK/demo.json" -o "$WORK/many" --time 0:30:6 --threads 1)
-same time_series.csv metrics.csv
-report "demo frames (6 × 4 sensors 160×80, by frames)" "$a" "$b"
+if wants frames; then
+  for _ in $(seq "$REPEAT"); do
+    rm -rf "$WORK/one" "$WORK/many"
+    a=$(seconds "$OBSCURA" render "$WORK/demo.json" -o "$WORK/one" --time 0:30:6 --threads 1)
+    b=$(seconds $MPIRUN -np "$RANKS" "$OBSCURA" render "$WORK/demo.json" -o "$WORK/many" --time 0:30:6 --threads 1)
+    same time_series.csv metrics.csv
+    report "demo frames (6 × 4 sensors 160×80, by frames)" "$a" "$b"
+  done
+  median "demo frames"
+fi
 
-rm -rf "$WORK/one" "$WORK/many"
-a=$(seconds "$OBSCURA" render "$WORK/big.json" -o "$WORK/one" --at 8 --threads 1)
-b=$(seconds $MPIRUN -np "$RANKS" "$OBSCURA" render "$WORK/big.json" -o "$WORK/many" --at 8 --threads 1)
-same metrics.csv
-report "one frame (4 sensors 512×256, by tiles)" "$a" "$b"
+if wants tiles; then
+  for _ in $(seq "$REPEAT"); do
+    rm -rf "$WORK/one" "$WORK/many"
+    a=$(seconds "$OBSCURA" render "$WORK/big.json" -o "$WORK/one" --at 8 --threads 1)
+    b=$(seconds $MPIRUN -np "$RANKS" "$OBSCURA" render "$WORK/big.json" -o "$WORK/many" --at 8 --threads 1)
+    same metrics.csv
+    report "one frame (4 sensors 512×256, by tiles)" "$a" "$b"
+  done
+  median "one frame by tiles"
+fi
 
+wants study || exit 0
 mkdir -p "$WORK/study"
 cp examples/salvo-study/study.json "$WORK/study/"
 python3 - "$WORK" "$PWD" <<'PY'
@@ -74,9 +107,13 @@ st = json.load(open(f"{w}/study/study.json"))
 st["prepare"] = f"{root}/examples/smoke-screen/prepare.json"
 json.dump(st, open(f"{w}/study/study.json", "w"))
 PY
-a=$(seconds "$OBSCURA" study "$WORK/study/study.json" -o "$WORK/study-one" --threads 1)
-b=$(seconds $MPIRUN -np "$RANKS" "$OBSCURA" study "$WORK/study/study.json" -o "$WORK/study-many" --threads 1)
-cut -d, -f1-5,7- "$WORK/study-one/results.csv" >"$WORK/a.csv"
-cut -d, -f1-5,7- "$WORK/study-many/results.csv" >"$WORK/b.csv"
-cmp -s "$WORK/a.csv" "$WORK/b.csv" || { echo "bench_mpi: the study tables differ" >&2; exit 1; }
-report "salvo study (16 cases, 64×32 px, by cases)" "$a" "$b"
+for _ in $(seq "$REPEAT"); do
+  rm -rf "$WORK/study-one" "$WORK/study-many"
+  a=$(seconds "$OBSCURA" study "$WORK/study/study.json" -o "$WORK/study-one" --threads 1)
+  b=$(seconds $MPIRUN -np "$RANKS" "$OBSCURA" study "$WORK/study/study.json" -o "$WORK/study-many" --threads 1)
+  cut -d, -f1-5,7- "$WORK/study-one/results.csv" >"$WORK/a.csv"
+  cut -d, -f1-5,7- "$WORK/study-many/results.csv" >"$WORK/b.csv"
+  cmp -s "$WORK/a.csv" "$WORK/b.csv" || { echo "bench_mpi: the study tables differ" >&2; exit 1; }
+  report "salvo study (16 cases, 64×32 px, by cases)" "$a" "$b"
+done
+median "salvo study"
