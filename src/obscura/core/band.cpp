@@ -13,6 +13,12 @@
 #include "obscura/core/planck.h"
 
 namespace obscura {
+namespace {
+
+// The bracket apparent_temperature searches, K.
+constexpr double kApparentTemperatureLowK = 1.0, kApparentTemperatureHighK = 1.0e6;
+
+}  // namespace
 
 Band Band::flat(std::string name, double lo_um, double hi_um) {
   return tabulated(std::move(name), {{lo_um, 1.0}, {hi_um, 1.0}});
@@ -139,6 +145,10 @@ BandQuadrature::BandQuadrature(const Band& band, int nodes_per_panel, double max
       lo = hi;
     }
   }
+  for (std::size_t i = 0; i < nodes_um_.size(); ++i) centroid_um_ += weights_um_[i] * nodes_um_[i];
+  if (response_integral_ > 0) centroid_um_ /= response_integral_;
+  radiance_at_1k_ = blackbody_radiance(kApparentTemperatureLowK);
+  radiance_at_1e6k_ = blackbody_radiance(kApparentTemperatureHighK);
 }
 
 BandQuadrature BandQuadrature::accurate(const Band& band) { return BandQuadrature(band, 12, 1.05); }
@@ -157,6 +167,25 @@ double BandQuadrature::blackbody_radiance_dT(double temperature_k) const {
   return sum;
 }
 
+double BandQuadrature::blackbody_radiance_and_dT(double temperature_k, double& d_dt) const {
+  double sum = 0, sum_dt = 0;
+  d_dt = 0;
+  if (temperature_k <= 0.0) return 0.0;
+  for (std::size_t i = 0; i < nodes_um_.size(); ++i) {
+    // B = c1L / (λ⁵ (eˣ − 1)), dB/dT = B (x / T) (1 + 1 / (eˣ − 1)),
+    // x = c2 / (λ T): finite (zero) where eˣ overflows.
+    const double lambda = nodes_um_[i];
+    const double x = kC2_umK / (lambda * temperature_k);
+    const double l5 = lambda * lambda * lambda * lambda * lambda;
+    const double em1 = std::expm1(x);
+    const double b = kC1L_um / (l5 * em1);
+    sum += weights_um_[i] * b;
+    sum_dt += weights_um_[i] * (b * x / temperature_k * (1.0 + 1.0 / em1));
+  }
+  d_dt = sum_dt;
+  return sum;
+}
+
 double BandQuadrature::integrate(const double* values) const {
   double sum = 0;
   for (std::size_t i = 0; i < nodes_um_.size(); ++i) sum += weights_um_[i] * values[i];
@@ -168,25 +197,24 @@ double BandQuadrature::apparent_temperature(double band_radiance) const {
   if (!std::isfinite(band_radiance)) return band_radiance;
   // Bracket in [lo, hi]; L(T) is strictly increasing. Newton on f(T) = ln L(T) − ln L*,
   // which is close to linear in 1/T (Wien), with bisection whenever a step leaves the bracket.
-  double lo = 1.0, hi = 1.0e6;
+  double lo = kApparentTemperatureLowK, hi = kApparentTemperatureHighK;
   const double target = std::log(band_radiance);
-  if (std::log(blackbody_radiance(hi)) < target) return std::numeric_limits<double>::infinity();
-  if (blackbody_radiance(lo) > 0 && std::log(blackbody_radiance(lo)) > target) return lo;
+  if (std::log(radiance_at_1e6k_) < target) return std::numeric_limits<double>::infinity();
+  if (radiance_at_1k_ > 0 && std::log(radiance_at_1k_) > target) return lo;
   // Start from the monochromatic brightness temperature at the band centroid.
-  double centroid = 0;
-  for (std::size_t i = 0; i < nodes_um_.size(); ++i) centroid += weights_um_[i] * nodes_um_[i];
-  centroid /= response_integral_;
+  const double centroid = centroid_um_;
   const double mean_spectral = band_radiance / response_integral_;
   double t = kC2_umK / (centroid * std::log1p(kC1L_um / (std::pow(centroid, 5) * mean_spectral)));
   if (!(t > lo && t < hi)) t = std::sqrt(lo * hi);
   for (int iter = 0; iter < 200; ++iter) {
-    const double l = blackbody_radiance(t);
+    double dl_dt;
+    const double l = blackbody_radiance_and_dT(t, dl_dt);
     const double f = (l > 0 ? std::log(l) : -1e300) - target;
     if (f > 0)
       hi = t;
     else
       lo = t;
-    const double df = blackbody_radiance_dT(t) / l;
+    const double df = dl_dt / l;
     double next = t - f / df;
     if (!(next > lo && next < hi) || !std::isfinite(next)) next = 0.5 * (lo + hi);
     if (std::abs(next - t) <= 1e-12 * t) return next;

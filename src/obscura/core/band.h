@@ -61,6 +61,9 @@ class BandQuadrature {
   // ∫ R B_λ(T) dλ, W m⁻² sr⁻¹.
   double blackbody_radiance(double temperature_k) const;
   double blackbody_radiance_dT(double temperature_k) const;
+  // Both at once (one exponential per node): returns ∫ R B dλ, writes
+  // ∫ R dB/dT dλ (W m⁻² sr⁻¹ K⁻¹) to `d_dt`.
+  double blackbody_radiance_and_dT(double temperature_k, double& d_dt) const;
   // Inverse of blackbody_radiance: the temperature (K) whose blackbody band
   // radiance equals `band_radiance`. Newton on log L with a bisection guard;
   // converged to 1e-9 K relative. Returns 0 for band_radiance <= 0.
@@ -72,6 +75,10 @@ class BandQuadrature {
   std::vector<double> nodes_um_;
   std::vector<double> weights_um_;
   double response_integral_ = 0;
+  // What apparent_temperature needs at every call: the response-weighted mean
+  // wavelength (µm) and the radiance at its bracket's ends, 1 K and 10⁶ K.
+  double centroid_um_ = 0;
+  double radiance_at_1k_ = 0, radiance_at_1e6k_ = 0;
 };
 
 // Gauss–Legendre nodes and weights on [-1, 1] (Newton on P_n, Golub–Welsch accuracy).
