@@ -19,7 +19,7 @@
 // degree 6 otherwise: a relative error of order (Δσs/σs)² 10⁻⁴ over a cell).
 //
 // Deterministic and independent of the thread and process counts: the
-// lattice is cut into fixed slabs of node layers along its z axis, each
+// lattice is cut into fixed slabs of node layers across its longest axis, each
 // summed by one task over the flights that reach it, in their stored order.
 // Processes share the slabs (slab s on rank s mod N) and then exchange their
 // slabs' sums, so each holds the bits one process would have made alone.
