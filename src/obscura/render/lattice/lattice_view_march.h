@@ -13,7 +13,19 @@
 //     // node j: σt (1/m) and the emissivity ε (W m⁻³ sr⁻¹ µm⁻¹: σa B(T),
 //     // plus σs J with in-scattering).
 //     void point(int j, const float* values, double& sigma_t, double& emissivity) const;
+//     // Optional: a record channel holding an optical depth (the sun's) that
+//     // ε falls off with as e^{−value}.
+//     static constexpr int kSteepChannel = …;
 //   };
+//
+// The cell quadrature fits a parabola to the source function through three
+// points, which cannot follow e^{−τ} where τ changes by several units across
+// the cell (a grazing sun on an optically thick cell: van de Hulst's problem
+// 1d, τ 32 and μ0 0.1, read +24 % with a cell one optical depth thick, the
+// sun's depth changing by 10 across it). So where the steep channel changes
+// by more than kMaxSteepStep between a cell's entry and exit, the cell is
+// cut into as many equal pieces as make each change at most that (up to
+// kMaxCellPieces), each integrated alike.
 //
 // Blocks the lattice does not hold and cells none of whose corners holds
 // medium are skipped; they are zero. The CPU marches every node of a band
@@ -22,6 +34,7 @@
 // in registers.
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <utility>
@@ -35,6 +48,18 @@
 namespace obscura {
 
 namespace lattice_march_detail {
+
+inline constexpr double kMaxSteepStep = 1.0;
+inline constexpr int kMaxCellPieces = 16;
+
+// Source::kSteepChannel, or −1 when the source has none.
+template <class Source>
+constexpr int steep_channel() {
+  if constexpr (requires { Source::kSteepChannel; })
+    return Source::kSteepChannel;
+  else
+    return -1;
+}
 
 // The first slots of the 8 blocks at offsets (0|1, 0|1, 0|1) from block
 // `block` (x fastest), `zero` where the lattice does not hold one: a cell's
@@ -201,31 +226,93 @@ OBSCURA_HOST_DEVICE std::uint64_t march_lattice_ray(const LatticeView& lattice,
   double previous_end = -1.0;
   const Vec3& o = lray.origin;
   const Vec3& dir = lray.direction;
-  d::for_each_cell(lattice, o, dir, t_begin, t_end,
-                   [&](const std::array<int, 3>& cell, double t0, double t1,
-                       const std::array<std::size_t, 8>& slot) OBSCURA_ALWAYS_INLINE {
-                     ++cells;
-                     const bool reuse = t0 == previous_end;
-                     if (reuse) {
-                       if constexpr (MaxNodes == 1) {
-                         sigma_t[0][0] = sigma_t[2][0];
-                         emissivity[0][0] = emissivity[2][0];
-                       } else {
-                         std::swap(sigma_t[0], sigma_t[2]);
-                         std::swap(emissivity[0], emissivity[2]);
-                       }
-                     }
-                     const double ts[3] = {t0, 0.5 * (t0 + t1), t1};
-                     for (int p = reuse ? 1 : 0; p < 3; ++p) {
-                       d::corner_weights(o, dir, ts[p], cell, w);
-                       for (int j = 0; j < n; ++j) {
-                         d::interpolate<Stride>(records[j], slot, w, values);
-                         source.point(j, values, sigma_t[p][j], emissivity[p][j]);
-                       }
-                     }
-                     add_cell(t1 - t0, n, sigma_t, emissivity, radiance, transmittance);
-                     previous_end = t1;
-                   });
+  constexpr int kSteep = d::steep_channel<Source>();
+  // The steep channel's value at the cell's entry and exit, per node.
+  double steep_at[2][MaxNodes] = {};
+  // σt and ε (and the steep channel) at lattice point o + t d of `cell` into
+  // slot p of the arrays.
+  auto evaluate = [&](const std::array<int, 3>& cell, const std::array<std::size_t, 8>& slot,
+                      double t, int p, double* steep) OBSCURA_ALWAYS_INLINE {
+    d::corner_weights(o, dir, t, cell, w);
+    for (int j = 0; j < n; ++j) {
+      d::interpolate<Stride>(records[j], slot, w, values);
+      source.point(j, values, sigma_t[p][j], emissivity[p][j]);
+      if constexpr (kSteep >= 0)
+        if (steep) steep[j] = values[kSteep];
+    }
+  };
+  auto keep_exit_as_entry = [&]() OBSCURA_ALWAYS_INLINE {
+    if constexpr (MaxNodes == 1) {
+      sigma_t[0][0] = sigma_t[2][0];
+      emissivity[0][0] = emissivity[2][0];
+    } else {
+      std::swap(sigma_t[0], sigma_t[2]);
+      std::swap(emissivity[0], emissivity[2]);
+    }
+  };
+  d::for_each_cell(
+      lattice, o, dir, t_begin, t_end,
+      [&](const std::array<int, 3>& cell, double t0, double t1,
+          const std::array<std::size_t, 8>& slot) OBSCURA_ALWAYS_INLINE {
+        ++cells;
+        const bool reuse = t0 == previous_end;
+        if (reuse) {
+          keep_exit_as_entry();
+          if constexpr (kSteep >= 0)
+            for (int j = 0; j < n; ++j) steep_at[0][j] = steep_at[1][j];
+        } else {
+          evaluate(cell, slot, t0, 0, steep_at[0]);
+        }
+        evaluate(cell, slot, t1, 2, steep_at[1]);
+        previous_end = t1;
+        evaluate(cell, slot, 0.5 * (t0 + t1), 1, nullptr);
+        // How many pieces each node's cell takes: decided per node,
+        // so that a device thread marching one node does the same.
+        bool any_cut = false;
+        int pieces[MaxNodes];
+        for (int j = 0; j < n; ++j) {
+          pieces[j] = 1;
+          if constexpr (kSteep >= 0) {
+            const double change = std::abs(steep_at[1][j] - steep_at[0][j]);
+            if (change > d::kMaxSteepStep)
+              pieces[j] = static_cast<int>(
+                  std::min<double>(d::kMaxCellPieces, std::ceil(change / d::kMaxSteepStep)));
+          }
+          any_cut = any_cut || pieces[j] > 1;
+        }
+        if (!any_cut) {
+          add_cell(t1 - t0, n, sigma_t, emissivity, radiance, transmittance);
+          return;
+        }
+        for (int j = 0; j < n; ++j) {
+          const double* st[3] = {sigma_t[0] + j, sigma_t[1] + j, sigma_t[2] + j};
+          const double* em[3] = {emissivity[0] + j, emissivity[1] + j, emissivity[2] + j};
+          if (pieces[j] == 1) {
+            add_cell(t1 - t0, 1, st, em, radiance + j, transmittance + j);
+            continue;
+          }
+          // Equal pieces, each from its entry (the last one's
+          // exit), middle and exit, for this node alone; the
+          // cell's own three points stay for the next cell.
+          double sub_st[3], sub_em[3];
+          sub_st[2] = sigma_t[0][j];
+          sub_em[2] = emissivity[0][j];
+          const double step = (t1 - t0) / pieces[j];
+          for (int k = 0; k < pieces[j]; ++k) {
+            const double a = t0 + k * step, b = k + 1 == pieces[j] ? t1 : a + step;
+            sub_st[0] = sub_st[2];
+            sub_em[0] = sub_em[2];
+            for (int p = 1; p < 3; ++p) {
+              d::corner_weights(o, dir, p == 1 ? 0.5 * (a + b) : b, cell, w);
+              d::interpolate<Stride>(records[j], slot, w, values);
+              source.point(j, values, sub_st[p], sub_em[p]);
+            }
+            const double* pst[3] = {sub_st, sub_st + 1, sub_st + 2};
+            const double* pem[3] = {sub_em, sub_em + 1, sub_em + 2};
+            add_cell(b - a, 1, pst, pem, radiance + j, transmittance + j);
+          }
+        }
+      });
   return cells;
 }
 

@@ -107,6 +107,9 @@ struct CacheLight {
 struct CacheSource {
   const PlanckTableView* planck;  // per node j of the march
   const CacheLight& light;
+  // The sun's optical depth: where it changes steeply across a cell, the
+  // march cuts the cell into pieces (lattice_view_march.h).
+  static constexpr int kSteepChannel = record::kTauSun;
 
   OBSCURA_HOST_DEVICE void point(int j, const float* v, double& sigma_t, double& emissivity) const {
     const double sigma_a = v[record::kSigmaA], sigma_s = v[record::kSigmaS];
