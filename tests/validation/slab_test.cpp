@@ -101,17 +101,20 @@ void published_problems(RenderMethod method, double tolerance) {
   };
   const double z = z_for(12);
   for (const auto& p : all) {
-    // The radiance cache fails 1d (R +24 %, docs/validation.md): at τ 32 a
-    // cell of the default lattice is one optical depth thick and the grazing
-    // sun's (μ0 0.1) single scattering falls by e^{−10} across it, which the
-    // cell quadrature's parabola in S does not follow.
-    if (method == RenderMethod::kRadianceCache && std::string(p.problem) == "1d") continue;
+    // The radiance cache reads 1d's R −2.0 % (docs/validation.md): at τ 32
+    // a cell of the default lattice is one optical depth thick and the
+    // grazing sun's (μ0 0.1) depth climbs by 10 across it. The march cuts
+    // such cells (R was +24 % before); what is left is the lattice's
+    // interpolation of the sun's depth across the slab's top face (−0.17 %
+    // on a lattice 4 times finer). Held to 3 % here.
+    const bool coarse = method == RenderMethod::kRadianceCache && std::string(p.problem) == "1d";
+    const double within = coarse ? 0.03 : tolerance;
     const auto ref = published_row(p.slab);
     ASSERT_TRUE(ref) << "problem " << p.problem << " missing from " << kTable;
     const auto rows = validate_slab(p.slab, ref, for_method(method));
-    EXPECT_TRUE(agrees(quantity(rows, "R"), ref->r, z, tolerance)) << "problem " << p.problem;
+    EXPECT_TRUE(agrees(quantity(rows, "R"), ref->r, z, within)) << "problem " << p.problem;
     if (ref->t > 0)
-      EXPECT_TRUE(agrees(quantity(rows, "T"), ref->t, z, tolerance)) << "problem " << p.problem;
+      EXPECT_TRUE(agrees(quantity(rows, "T"), ref->t, z, within)) << "problem " << p.problem;
     else
       EXPECT_LT(quantity(rows, "T").obtained, 1e-6) << "problem " << p.problem;
   }

@@ -7,7 +7,19 @@
 // σs J to it (the radiance cache's camera march), so emission and scattered
 // light are integrated together with the exact transmittance of every cell.
 // A point's values at a cell's exit are reused at the next cell's entry.
+//
+// An in-scattering source that lights the medium by a sun may tell the
+// sun's optical depth along the ray (sun_depths(t, tau): τ_sun per node at
+// distance t) and the medium at a point (medium_at(t, point)): where τ_sun
+// climbs by more than 1 across a cell, that node's cell is cut into
+// ⌈Δτ_sun⌉ equal pieces (at most 16), the medium and the light read at the
+// pieces' points, as the lattice march does
+// (render/lattice/lattice_view_march.h, docs/physics.md). (The emission of
+// overlapping clouds there is σa B at the point's one temperature.)
+#include <algorithm>
 #include <array>
+#include <cmath>
+#include <vector>
 
 #include "obscura/medium/medium_march.h"
 #include "obscura/render/emission_absorption/cell_quadrature.h"
@@ -52,12 +64,72 @@ class EmissionMarcher final : public MarchVisitor {
     const double* sigma_t[3] = {sigma_t_[0].data(), sigma_t_[1].data(), sigma_t_[2].data()};
     const double* emissivity[3] = {emissivity_[0].data(), emissivity_[1].data(),
                                    emissivity_[2].data()};
+    if constexpr (kCutsSteepCells) {
+      NodeArray tau0, tau1;
+      in_scattering_.sun_depths(t[0], tau0.data());
+      in_scattering_.sun_depths(t[2], tau1.data());
+      bool any_cut = false;
+      for (int j = 0; j < count_; ++j) any_cut = any_cut || std::abs(tau1[j] - tau0[j]) > 1.0;
+      if (any_cut) {
+        for (int j = 0; j < count_; ++j) {
+          const double change = std::abs(tau1[j] - tau0[j]);
+          if (change > 1.0) {
+            cut_cell(cell, j, std::min(16, static_cast<int>(std::ceil(change))));
+            continue;
+          }
+          const double* st[3] = {sigma_t[0] + j, sigma_t[1] + j, sigma_t[2] + j};
+          const double* em[3] = {emissivity[0] + j, emissivity[1] + j, emissivity[2] + j};
+          add_cell(cell.t_end - cell.t_begin, 1, st, em, radiance_ + j, transmittance_ + j);
+        }
+        return true;
+      }
+    }
     add_cell(cell.t_end - cell.t_begin, count_, sigma_t, emissivity, radiance_, transmittance_);
     return true;
   }
 
  private:
   using NodeArray = std::array<double, kMaxSpectralNodes>;
+  static constexpr bool kCutsSteepCells = requires(InScattering & in, double* tau, MediumPoint& m) {
+    in.sun_depths(0.0, tau);
+    in.medium_at(0.0, m);
+  };
+
+  // Node j's cell in `pieces` equal pieces: the medium (InScattering::
+  // medium_at: σa, σs, g and T at a point) and the light read at each
+  // piece's middle and exit.
+  void cut_cell(const MarchCell& cell, int j, int pieces) {
+    const double t0 = cell.t_begin, step = (cell.t_end - cell.t_begin) / pieces;
+    const SpectralNode& nd = nodes_.nodes()[j];
+    const SpectralLerp lerp = nd.lerp();
+    NodeArray sigma_s{}, g{}, emissivity{};
+    double st[3], em[3];
+    st[2] = sigma_t_[0][j];
+    em[2] = emissivity_[0][j];
+    for (int k = 0; k < pieces; ++k) {
+      st[0] = st[2];
+      em[0] = em[2];
+      for (int p = 1; p < 3; ++p) {
+        const double t = t0 + (k + 0.5 * p) * step;
+        in_scattering_.medium_at(t, medium_point_);
+        const std::vector<double>& ms = medium_point_.sigma_s;
+        const std::vector<double>& mg = medium_point_.g;
+        const double sa = lerp(medium_point_.sigma_a.data()), ss = lerp(ms.data());
+        st[p] = sa + ss;
+        sigma_s[j] = ss;
+        g[j] = ss > 0.0 ? ((1.0 - lerp.frac) * ms[lerp.sample0] * mg[lerp.sample0] +
+                           lerp.frac * ms[lerp.sample1] * mg[lerp.sample1]) /
+                              ss
+                        : 0.0;
+        emissivity[j] = sa != 0.0 ? sa * (*nd.planck_table)(medium_point_.temperature_k) : 0.0;
+        in_scattering_.add(cell, p, t, sigma_s.data(), g.data(), emissivity.data());
+        em[p] = emissivity[j];
+      }
+      const double* pst[3] = {st, st + 1, st + 2};
+      const double* pem[3] = {em, em + 1, em + 2};
+      add_cell(step, 1, pst, pem, radiance_ + j, transmittance_ + j);
+    }
+  }
 
   // σt and the emissivity at point p for every node.
   void point(const MarchCell& cell, int p, double t) {
@@ -93,6 +165,7 @@ class EmissionMarcher final : public MarchVisitor {
   double* radiance_;
   double* transmittance_;
   std::array<NodeArray, 3> sigma_t_{}, emissivity_{};
+  MediumPoint medium_point_;  // cut_cell's
   bool have_exit_ = false;
   std::uint64_t cells_ = 0;
 };

@@ -51,9 +51,30 @@ class CacheInScattering {
  public:
   static constexpr bool kWantsG = true;
 
-  CacheInScattering(const RadianceCache& cache, const CacheLight& light, const Ray& ray,
-                    const int* record, int nodes)
-      : cache_(cache), light_(light), ray_(ray), record_(record), nodes_(nodes) {}
+  CacheInScattering(const Medium& medium, const RadianceCache& cache, const CacheLight& light,
+                    const Ray& ray, const int* record, int nodes)
+      : medium_(medium), cache_(cache), light_(light), ray_(ray), record_(record), nodes_(nodes) {}
+
+  void medium_at(double t, MediumPoint& point) const { medium_.coefficients_at(ray_.at(t), point); }
+
+  // The sun's optical depth per node at distance t along the ray (0 where
+  // the lattice holds nothing): the marcher cuts cells where it climbs
+  // steeply (emission_marcher.h).
+  void sun_depths(double t, double* tau) const {
+    std::array<std::size_t, 8> slot;
+    std::array<double, 8> w;
+    const bool inside = cache_.lattice().corners(ray_.at(t), slot, w);
+    const LatticeVolume& volume = cache_.volume();
+    const auto stride = static_cast<std::size_t>(volume.stride());
+    for (int j = 0; j < nodes_; ++j) {
+      tau[j] = 0.0;
+      if (!inside) continue;
+      const float* records = volume.records(record_[j]);
+      for (int c = 0; c < 8; ++c)
+        if (slot[c] != NodeLattice::kNoSlot && w[c] != 0.0)
+          tau[j] += w[c] * records[slot[c] * stride + record::kTauSun];
+    }
+  }
 
   void add(const MarchCell&, int, double t, const double* sigma_s, const double* g,
            double* emissivity) {
@@ -80,6 +101,7 @@ class CacheInScattering {
   }
 
  private:
+  const Medium& medium_;
   const RadianceCache& cache_;
   const CacheLight& light_;
   const Ray& ray_;
@@ -118,7 +140,8 @@ std::uint64_t march_cache_medium(const Scene& scene, const RadianceCache& cache,
                                  const CameraRay& camera, const SpectralNodes& nodes,
                                  const int* record, double* radiance, double* transmittance) {
   const RayLight light(scene, cache, camera.ray, nodes);
-  CacheInScattering in(cache, light.light(), camera.ray, record, static_cast<int>(nodes.size()));
+  CacheInScattering in(*scene.medium, cache, light.light(), camera.ray, record,
+                       static_cast<int>(nodes.size()));
   EmissionMarcher<CacheInScattering> marcher(nodes, in, radiance, transmittance);
   MarchOptions march;
   march.with_g = true;
