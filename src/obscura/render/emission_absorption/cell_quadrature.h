@@ -35,6 +35,16 @@ namespace obscura {
 
 inline constexpr double kThinCell = 0.1;
 
+// How many equal pieces a cell is cut into when the sun's optical depth
+// changes by `sun_depth_change` between its entry and exit: the parabola
+// above cannot follow e^{−τ_sun} over several units of τ_sun (a grazing sun
+// on an optically thick cell), so each piece spans at most 1, up to 16
+// pieces (docs/physics.md, "A sun whose depth climbs steeply across a cell").
+OBSCURA_HOST_DEVICE inline int cell_pieces(double sun_depth_change) {
+  const double change = std::abs(sun_depth_change);
+  return change > 1.0 ? static_cast<int>(std::min(16.0, std::ceil(change))) : 1;
+}
+
 struct CellEmission {
   double emitted = 0.0;        // ∫ e^{−τ} ε ds over the cell, W m⁻² sr⁻¹ µm⁻¹
   double transmittance = 1.0;  // e^{−D}

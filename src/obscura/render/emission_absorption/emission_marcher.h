@@ -11,14 +11,12 @@
 // An in-scattering source that lights the medium by a sun may tell the
 // sun's optical depth along the ray (sun_depths(t, tau): τ_sun per node at
 // distance t) and the medium at a point (medium_at(t, point)): where τ_sun
-// climbs by more than 1 across a cell, that node's cell is cut into
-// ⌈Δτ_sun⌉ equal pieces (at most 16), the medium and the light read at the
-// pieces' points, as the lattice march does
+// climbs by more than 1 across a cell, that node's cell is cut into equal
+// pieces (cell_pieces, cell_quadrature.h), the medium and the light read at
+// the pieces' points, as the lattice march does
 // (render/lattice/lattice_view_march.h, docs/physics.md). (The emission of
 // overlapping clouds there is σa B at the point's one temperature.)
-#include <algorithm>
 #include <array>
-#include <cmath>
 #include <vector>
 
 #include "obscura/medium/medium_march.h"
@@ -69,12 +67,12 @@ class EmissionMarcher final : public MarchVisitor {
       in_scattering_.sun_depths(t[0], tau0.data());
       in_scattering_.sun_depths(t[2], tau1.data());
       bool any_cut = false;
-      for (int j = 0; j < count_; ++j) any_cut = any_cut || std::abs(tau1[j] - tau0[j]) > 1.0;
+      for (int j = 0; j < count_; ++j) any_cut = any_cut || cell_pieces(tau1[j] - tau0[j]) > 1;
       if (any_cut) {
         for (int j = 0; j < count_; ++j) {
-          const double change = std::abs(tau1[j] - tau0[j]);
-          if (change > 1.0) {
-            cut_cell(cell, j, std::min(16, static_cast<int>(std::ceil(change))));
+          const int pieces = cell_pieces(tau1[j] - tau0[j]);
+          if (pieces > 1) {
+            cut_cell(cell, j, pieces);
             continue;
           }
           const double* st[3] = {sigma_t[0] + j, sigma_t[1] + j, sigma_t[2] + j};

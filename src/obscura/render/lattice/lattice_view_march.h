@@ -23,9 +23,8 @@
 // the cell (a grazing sun on an optically thick cell: van de Hulst's problem
 // 1d, τ 32 and μ0 0.1, read +24 % with a cell one optical depth thick, the
 // sun's depth changing by 10 across it). So where the steep channel changes
-// by more than kMaxSteepStep between a cell's entry and exit, the cell is
-// cut into as many equal pieces as make each change at most that (up to
-// kMaxCellPieces), each integrated alike.
+// by more than 1 between a cell's entry and exit, the cell is cut into equal
+// pieces (cell_pieces, cell_quadrature.h), each integrated alike.
 //
 // Blocks the lattice does not hold and cells none of whose corners holds
 // medium are skipped; they are zero. The CPU marches every node of a band
@@ -48,9 +47,6 @@
 namespace obscura {
 
 namespace lattice_march_detail {
-
-inline constexpr double kMaxSteepStep = 1.0;
-inline constexpr int kMaxCellPieces = 16;
 
 // Source::kSteepChannel, or −1 when the source has none.
 template <class Source>
@@ -272,12 +268,7 @@ OBSCURA_HOST_DEVICE std::uint64_t march_lattice_ray(const LatticeView& lattice,
         int pieces[MaxNodes];
         for (int j = 0; j < n; ++j) {
           pieces[j] = 1;
-          if constexpr (kSteep >= 0) {
-            const double change = std::abs(steep_at[1][j] - steep_at[0][j]);
-            if (change > d::kMaxSteepStep)
-              pieces[j] = static_cast<int>(
-                  std::min<double>(d::kMaxCellPieces, std::ceil(change / d::kMaxSteepStep)));
-          }
+          if constexpr (kSteep >= 0) pieces[j] = cell_pieces(steep_at[1][j] - steep_at[0][j]);
           any_cut = any_cut || pieces[j] > 1;
         }
         if (!any_cut) {
