@@ -15,17 +15,17 @@
 //                    [--size 256] [--methods path-tracer,photonmap,radiance-cache]
 //                    [--reference-file F] [--sh-degree D] [--kernel R] [--voxel M]
 //                    [--photons N] [--steps 12] [--error-map F] [--cache-spp 4]
-//                    [--medium grid|box]
+//                    [--medium grid|box] [--seed 1]
 // --reference-file keeps the reference's block means in F (read back when F
 // exists and was made at the same size and spp); --sh-degree, --kernel and
 // --voxel set the radiance cache's settings, --photons its first effort
 // (photons per node, doubled at each of at most --steps steps). --error-map
 // writes each step's blocks (reference mean and relative difference) to F as
-// CSV. --cache-spp: the radiance cache's samples per pixel (stratified: one
-// sample at a pixel's centre is not the pixel's mean where an edge crosses
-// it, and the reference's is). The radiance cache's defaults here, 4 spp and
-// SH degree 3, are what reached 2 % (docs/performance.md). --medium: the cube
-// as a 32³ grid (default) or a box (the same medium). Nothing here is asserted.
+// CSV. --seed: the methods' seed (1; the reference's is fixed). --cache-spp: the radiance cache's
+// samples per pixel (stratified: one sample at a pixel's centre is not the pixel's mean where an
+// edge crosses it, and the reference's is). The radiance cache's defaults here, 4 spp and SH degree
+// 3, are what reached 2 % (docs/performance.md). --medium: the cube as a 32³ grid (default) or a
+// box (the same medium). Nothing here is asserted.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -145,19 +145,20 @@ void write_reference(const std::string& path, int size, int spp, const Blocks& b
 struct Timed {
   double seconds;
   Blocks blocks;
+  RenderStats stats;
 };
 
 Timed render_timed(Scene& scene) {
   const auto t0 = bench::Clock::now();
   const SensorImage img = render_sensor(scene, scene.sensors[0]);
-  return {bench::seconds_since(t0), block_means(img, scene.sensors[0].camera.width())};
+  return {bench::seconds_since(t0), block_means(img, scene.sensors[0].camera.width()), img.stats};
 }
 
 constexpr const char* kUsage =
     "usage: bench_smoke_cube [--reference-spp 4096] [--target 0.02] [--threads N] [--size 256]\n"
     "         [--methods path-tracer,photonmap,radiance-cache] [--reference-file F]\n"
     "         [--sh-degree 3] [--kernel R] [--voxel M] [--photons 25000] [--steps 12]\n"
-    "         [--error-map F] [--cache-spp 4] [--medium grid|box]\n";
+    "         [--error-map F] [--cache-spp 4] [--medium grid|box] [--seed 1]\n";
 
 }  // namespace
 
@@ -166,6 +167,7 @@ int main(int argc, char** argv) {
   double target = 0.02, voxel_m = -1;
   long long cache_photons = 25000;
   int max_steps = 12, cache_spp = 4;
+  std::uint64_t seed = 1;
   std::string medium_form = "grid";
   std::string methods = "path-tracer,photonmap,radiance-cache", reference_file, error_map;
   for (int i = 1; i < argc; i += 2) {
@@ -204,6 +206,8 @@ int main(int argc, char** argv) {
       cache_spp = std::atoi(argv[i + 1]);
     else if (a == "--steps")
       max_steps = std::atoi(argv[i + 1]);
+    else if (a == "--seed")
+      seed = std::strtoull(argv[i + 1], nullptr, 10);
     else if (a == "--photons")
       cache_photons = std::atoll(argv[i + 1]);
     else {
@@ -222,7 +226,7 @@ int main(int argc, char** argv) {
   if (sh_degree >= 0) scene.settings.radiance_cache.sh_degree = sh_degree;
   if (kernel >= 0) scene.settings.radiance_cache.kernel_radius_nodes = kernel;
   if (voxel_m >= 0) scene.settings.radiance_cache.voxel_m = voxel_m;
-  Timed ref{0.0, {}};
+  Timed ref{0.0, {}, {}};
   if (reference_file.empty() || !read_reference(reference_file, size, reference_spp, ref.blocks)) {
     ref = render_timed(scene);
     if (!reference_file.empty()) write_reference(reference_file, size, reference_spp, ref.blocks);
@@ -240,7 +244,7 @@ int main(int argc, char** argv) {
       return 2;
     }
     scene.settings.method = *method;
-    scene.settings.seed = 1;
+    scene.settings.seed = seed;
     double first_under = -1;
     for (int step = 0; step < max_steps; ++step) {
       const long long effort = 1ll << step;
@@ -267,8 +271,14 @@ int main(int argc, char** argv) {
           map << k % nb << ',' << k / nb << ',' << ref.blocks.mean[k] << ','
               << t.blocks.mean[k] / ref.blocks.mean[k] - 1.0 << '\n';
       }
-      std::printf("%-15s %-28s %8.2f s  error %.4f\n", name.c_str(), what.c_str(), t.seconds,
-                  error);
+      std::printf("%-15s %-28s %8.2f s  error %.4f", name.c_str(), what.c_str(), t.seconds, error);
+      // Where the photon methods' time goes: tracing pass 1, building (the
+      // kd-tree, or the cache's splat and sun depths), the camera rays.
+      if (t.stats.photon_seconds > 0.0)
+        std::printf("  (tracing %.2f s, building %.2f s, rays %.2f s)",
+                    t.stats.photon_trace_seconds, t.stats.photon_build_seconds,
+                    t.seconds - t.stats.photon_seconds);
+      std::printf("\n");
       std::fflush(stdout);
       if (error <= target) {
         first_under = t.seconds;

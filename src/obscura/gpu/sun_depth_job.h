@@ -7,7 +7,9 @@
 // sun_depth_item (docs/gpu.md). An item is one slot at one spectral node
 // (items u·slots … (u + 1)·slots − 1 are node u's); it writes the slot's
 // record::kTauSun channel and reads only the medium channels, which no item
-// writes. Slots past the lattice's last node keep what they hold.
+// writes. Slots past the lattice's last node keep what they hold. A rim node
+// outside the medium's box holds 2 τ(face) − τ(inner neighbour), as the CPU's
+// (lattice_view.h, rim_face).
 //
 // The CPU's cache marches the medium itself per medium sample and then
 // interpolates in wavelength (RadianceCache::compute_sun); this marches the
@@ -62,10 +64,16 @@ OBSCURA_HOST_DEVICE void sun_depth_item(const SunDepthJob& job, std::uint64_t it
   const std::array<int, 3> node = slot_node(job.lattice, slot);
   for (int a = 0; a < 3; ++a)
     if (node[a] >= job.lattice.dims[a]) return;
-  const Ray lray{Vec3(node[0], node[1], node[2]), job.to_sun_lattice};
   float* const records = job.records[u];
-  const double tau = lattice_optical_depth<Stride>(job.lattice, records, lray,
-                                                   std::numeric_limits<double>::infinity());
+  const auto depth = [&](const Vec3& from) {
+    return lattice_optical_depth<Stride>(job.lattice, records, Ray{from, job.to_sun_lattice},
+                                         std::numeric_limits<double>::infinity());
+  };
+  const Vec3 at(node[0], node[1], node[2]);
+  Vec3 face;
+  const double tau = rim_face(job.lattice.domain, at, face)
+                         ? 2.0 * depth(face) - depth(face * 2.0 - at)
+                         : depth(at);
   records[slot * Stride + record::kTauSun] = static_cast<float>(tau);
 }
 

@@ -95,7 +95,7 @@ class EmissionMarcher final : public MarchVisitor {
 
   // Node j's cell in `pieces` equal pieces: the medium (InScattering::
   // medium_at: σa, σs, g and T at a point) and the light read at each
-  // piece's middle and exit.
+  // piece's middle and exit (the last exit is the cell's).
   void cut_cell(const MarchCell& cell, int j, int pieces) {
     const double t0 = cell.t_begin, step = (cell.t_end - cell.t_begin) / pieces;
     const SpectralNode& nd = nodes_.nodes()[j];
@@ -108,6 +108,13 @@ class EmissionMarcher final : public MarchVisitor {
       st[0] = st[2];
       em[0] = em[2];
       for (int p = 1; p < 3; ++p) {
+        if (k == pieces - 1 && p == 2) {
+          // The cell's own exit, read already (a point on the medium's box
+          // would read as outside it there after rounding).
+          st[2] = sigma_t_[2][j];
+          em[2] = emissivity_[2][j];
+          continue;
+        }
         const double t = t0 + (k + 0.5 * p) * step;
         in_scattering_.medium_at(t, medium_point_);
         const std::vector<double>& ms = medium_point_.sigma_s;

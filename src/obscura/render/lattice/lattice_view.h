@@ -72,6 +72,21 @@ struct LatticeView {
   }
 };
 
+// Whether lattice point `node` lies outside the medium's box `domain` (a rim
+// node of a lattice laid on a grid), and the box's point nearest it, `face`.
+// The rim node serves only the half cell inside the box, between the face and
+// its inner neighbour 2 face − node: a quantity f that is linear there (the
+// sun's optical depth at a cloud's face, where it is zero just outside) is
+// read by the trilinear interpolation exactly when the rim node holds
+// 2 f(face) − f(2 face − node), not f(node) itself
+// (docs/physics.md, "The sun's depth at a cloud's face").
+OBSCURA_HOST_DEVICE inline bool rim_face(const BBox3& domain, const Vec3& node, Vec3& face) {
+  face = Vec3(node.x < domain.lo.x ? domain.lo.x : (node.x > domain.hi.x ? domain.hi.x : node.x),
+              node.y < domain.lo.y ? domain.lo.y : (node.y > domain.hi.y ? domain.hi.y : node.y),
+              node.z < domain.lo.z ? domain.lo.z : (node.z > domain.hi.z ? domain.hi.z : node.z));
+  return face.x != node.x || face.y != node.y || face.z != node.z;
+}
+
 // The layout both compilers must agree on (tests/render/lattice/
 // lattice_view_test.cpp repeats these, and gpu/check compares them with what
 // device code sees).

@@ -4,6 +4,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <functional>
 #include <limits>
 #include <numbers>
@@ -15,6 +16,7 @@
 #include "obscura/core/parallel.h"
 #include "obscura/core/shared_ranges.h"
 #include "obscura/render/photon_map/photon_tracing.h"
+#include "obscura/render/radiance_cache/estimates_at_nodes.h"
 #include "obscura/render/radiance_cache/flight_splat.h"
 
 namespace obscura {
@@ -27,16 +29,19 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-// ∫ (tent(t/r)/r) tent(t − k) dt over t in [lo, hi]: the splatting kernel
-// against the lattice's linear interpolation, one axis, at node offset k
-// (|k| ≤ r), the medium present only on [lo, hi] (node units, relative to
-// the kernel's node). Simpson's rule between the integrand's breakpoints,
-// where it is a quadratic: exact.
-double kernel_overlap(int r, int k, double lo, double hi) {
+// ∫ (tent(t/r)/r) tᵐ tent(t − k) dt over t in [lo, hi], m = `moment` (0 or
+// 1): the splatting kernel against the lattice's linear interpolation, one
+// axis, at node offset k (|k| ≤ r), the medium present only on [lo, hi]
+// (node units, relative to the kernel's node); with m = 1 the kernel's first
+// moment, whose ratio to m = 0 is where the estimate sits (centroid_shift).
+// Simpson's rule between the integrand's breakpoints, where it is at most a
+// cubic: exact.
+double kernel_overlap(int r, int k, double lo, double hi, int moment) {
   const double a = std::max<double>(-r, lo), b = std::min<double>(r, hi);
   if (!(b > a)) return 0.0;
   auto f = [&](double t) {
-    return std::max(0.0, 1.0 - std::abs(t) / r) / r * std::max(0.0, 1.0 - std::abs(t - k));
+    return std::max(0.0, 1.0 - std::abs(t) / r) / r * std::max(0.0, 1.0 - std::abs(t - k)) *
+           (moment == 1 ? t : 1.0);
   };
   std::vector<double> breaks = {
       a, b, 0.0, static_cast<double>(k - 1), static_cast<double>(k), static_cast<double>(k + 1)};
@@ -51,12 +56,12 @@ double kernel_overlap(int r, int k, double lo, double hi) {
 
 // Per node index along one axis of `nodes` nodes, the 2r + 1 overlaps of
 // kernel_overlap with the medium on [lo, hi] (node units).
-std::vector<double> axis_overlaps(int r, int nodes, double lo, double hi) {
+std::vector<double> axis_overlaps(int r, int nodes, double lo, double hi, int moment) {
   std::vector<double> out(static_cast<std::size_t>(nodes) * (2 * r + 1));
   for (int i = 0; i < nodes; ++i)
     for (int k = -r; k <= r; ++k)
       out[static_cast<std::size_t>(i) * (2 * r + 1) + (k + r)] =
-          kernel_overlap(r, k, lo - i, hi - i);
+          kernel_overlap(r, k, lo - i, hi - i, moment);
   return out;
 }
 
@@ -110,21 +115,24 @@ RadianceCache::RadianceCache(const Scene& scene, const std::vector<SpectralNode>
               LatticeVolume::aligned_grid(*scene.medium, lattice_), scene.settings.threads,
               "render/radiance_cache/voxel_m") {
   const auto start = std::chrono::steady_clock::now();
-  // What building it takes besides the records: the kernels' σs integrals,
-  // the sun's depths per sample and one node's splat sums.
+  // What building it takes besides the records: the kernels' σs integrals
+  // and moments, the sun's depths per sample, one node's splat sums, their
+  // normalised values and centroids.
   const std::size_t slots = lattice_.slot_count();
-  const double bytes = static_cast<double>(slots) * (sizeof(float) * (2 * spectral_count_ + 1) +
-                                                     sizeof(double) * (sh_count_ + kMaxPeakViews));
+  const double bytes =
+      static_cast<double>(slots) *
+      (sizeof(float) * ((kKernelMoments + 1) * spectral_count_ + 1) +
+       sizeof(double) * 2 * (sh_count_ + kMaxPeakViews) + sizeof(double) * kKernelMoments);
   check_memory(static_cast<std::uint64_t>(bytes), "", "render/radiance_cache/voxel_m",
                fmt::format("building the radiance cache ({} nodes at {:.4g} m)", slots,
                            lattice_.spacing_m()));
   choose_peak_views(scene);
-  const std::vector<float> kernel_sigma_s = kernel_scattering(scene);
+  const std::vector<float> kernel_moments = kernel_scattering(scene);
   const auto sun_start = std::chrono::steady_clock::now();
   compute_sun(scene, nodes);
   sun_seconds = seconds_since(sun_start);
   for (std::size_t u = 0; u < nodes.size(); ++u)
-    splat(scene, nodes[u], static_cast<int>(u), kernel_sigma_s);
+    splat(scene, nodes[u], static_cast<int>(u), kernel_moments);
   seconds = seconds_since(start);
 }
 
@@ -163,6 +171,14 @@ void RadianceCache::compute_sun(const Scene& scene, const std::vector<SpectralNo
   // then on or just under it (the ground beneath a cloud's lowest nodes),
   // and its values serve the cells above.
   const double near_m = std::sqrt(3.0) * lattice_.spacing_m();
+  // Adds `weight` τ_sun from lattice point `at` to `tau`, per medium sample.
+  const auto add_depth = [&](const Vec3& at, double weight, std::vector<double>& tau) {
+    std::vector<double> depth(tau.size(), 0.0);
+    const Ray from{lattice_.origin() + lattice_.rotation() * (at * lattice_.spacing_m()), to_sun};
+    scene.medium->add_optical_depth(from, 0.0, std::numeric_limits<double>::infinity(),
+                                    depth.data());
+    for (std::size_t k = 0; k < tau.size(); ++k) tau[k] += weight * depth[k];
+  };
   for_blocks_shared(*processes_, lattice_.block_count(), scene.settings.threads, sun,
                     per_slot * NodeLattice::kBlockNodes, [&](std::size_t block) {
                       std::vector<double> tau(static_cast<std::size_t>(spectral_count_));
@@ -175,9 +191,17 @@ void RadianceCache::compute_sun(const Scene& scene, const std::vector<SpectralNo
                             intersect_surfaces(scene.surfaces, ray, near_m,
                                                std::numeric_limits<double>::infinity(), hit);
                         std::fill(tau.begin(), tau.end(), 0.0);
-                        if (sun_depths_ == SunDepths::kHere)
-                          scene.medium->add_optical_depth(
-                              ray, 0.0, std::numeric_limits<double>::infinity(), tau.data());
+                        if (sun_depths_ == SunDepths::kHere) {
+                          const Vec3 node = lattice_.to_lattice(ray.origin);
+                          Vec3 face;
+                          if (volume_.has_medium() && rim_face(volume_.domain(), node, face)) {
+                            // 2 τ(face) − τ(inner neighbour) (lattice_view.h).
+                            add_depth(face, 2.0, tau);
+                            add_depth(face * 2.0 - node, -1.0, tau);
+                          } else {
+                            add_depth(node, 1.0, tau);
+                          }
+                        }
                         float* out = sun.data() + slot * per_slot;
                         for (int k = 0; k < spectral_count_; ++k)
                           out[k] = static_cast<float>(tau[k]);
@@ -205,7 +229,7 @@ std::vector<float> RadianceCache::kernel_scattering(const Scene& scene) const {
   const std::size_t slots = lattice_.slot_count();
   const int ns = spectral_count_;
   const int r = scene.settings.radiance_cache.kernel_radius_nodes;
-  std::vector<float> out(slots * static_cast<std::size_t>(ns), 0.0f);
+  std::vector<float> out(slots * static_cast<std::size_t>(ns) * kKernelMoments, 0.0f);
   // The medium is trilinear between the lattice's nodes when they are its
   // own voxel centres: then ∫ K σs dV = Σ_m σs(x_m) W(m − n) exactly.
   const std::optional<GridFrame> frame = medium.grid_frame();
@@ -217,7 +241,7 @@ std::vector<float> RadianceCache::kernel_scattering(const Scene& scene) const {
   // reconstruction), and zero outside it: the overlaps are clipped to the
   // box, [½, n + ½] in node units.
   std::vector<float> at_nodes;
-  std::array<std::vector<double>, 3> overlap;
+  std::array<std::vector<double>, 3> overlap, overlap_moment;
   if (aligned) {
     at_nodes.assign(slots * static_cast<std::size_t>(ns), 0.0f);
     const GridDims& d = frame->dims;
@@ -234,8 +258,10 @@ std::vector<float> RadianceCache::kernel_scattering(const Scene& scene) const {
       }
     });
     const std::array<int, 3> cells = {d.nx, d.ny, d.nz};
-    for (int a = 0; a < 3; ++a)
-      overlap[a] = axis_overlaps(r, lattice_.dims()[a], 0.5, cells[a] + 0.5);
+    for (int a = 0; a < 3; ++a) {
+      overlap[a] = axis_overlaps(r, lattice_.dims()[a], 0.5, cells[a] + 0.5, 0);
+      overlap_moment[a] = axis_overlaps(r, lattice_.dims()[a], 0.5, cells[a] + 0.5, 1);
+    }
   }
   // Otherwise (steps at a box's faces, clouds on other grids) by two-point
   // Gauss–Legendre per lattice interval and axis over the kernel's support:
@@ -248,52 +274,66 @@ std::vector<float> RadianceCache::kernel_scattering(const Scene& scene) const {
       gauss_u.push_back(u);
       gauss_w.push_back(0.5 * std::max(0.0, 1.0 - std::abs(u) / r) / r);
     }
-  for_blocks_shared(*processes_, lattice_.block_count(), scene.settings.threads, out,
-                    static_cast<std::size_t>(ns) * NodeLattice::kBlockNodes,
-                    [&](std::size_t block) {
-                      MediumPoint point;
-                      std::vector<double> sum(static_cast<std::size_t>(ns));
-                      for (std::size_t slot = block * NodeLattice::kBlockNodes;
-                           slot < (block + 1) * NodeLattice::kBlockNodes; ++slot) {
-                        if (!lattice_.slot_inside(slot)) continue;
-                        const Vec3 node = lattice_.to_lattice(lattice_.slot_position(slot));
-                        const int ni = static_cast<int>(std::lround(node.x)),
-                                  nj = static_cast<int>(std::lround(node.y)),
-                                  nk = static_cast<int>(std::lround(node.z));
-                        std::fill(sum.begin(), sum.end(), 0.0);
-                        if (aligned) {
-                          for (int dk = -r; dk <= r; ++dk)
-                            for (int dj = -r; dj <= r; ++dj)
-                              for (int di = -r; di <= r; ++di) {
-                                const std::size_t m = lattice_.slot_of(ni + di, nj + dj, nk + dk);
-                                if (m == NodeLattice::kNoSlot) continue;
-                                const std::size_t span = 2 * r + 1;
-                                const double w = overlap[0][ni * span + (di + r)] *
-                                                 overlap[1][nj * span + (dj + r)] *
-                                                 overlap[2][nk * span + (dk + r)];
-                                for (int k = 0; k < ns; ++k) sum[k] += w * at_nodes[m * ns + k];
-                              }
-                        } else {
-                          const Vec3 p0 = lattice_.slot_position(slot);
-                          const double h = lattice_.spacing_m();
-                          for (std::size_t c = 0; c < gauss_u.size(); ++c)
-                            for (std::size_t b = 0; b < gauss_u.size(); ++b)
-                              for (std::size_t a = 0; a < gauss_u.size(); ++a) {
-                                const Vec3 offset(gauss_u[a] * h, gauss_u[b] * h, gauss_u[c] * h);
-                                medium.coefficients_at(p0 + lattice_.rotation() * offset, point);
-                                const double w = gauss_w[a] * gauss_w[b] * gauss_w[c];
-                                for (int k = 0; k < ns; ++k) sum[k] += w * point.sigma_s[k];
-                              }
-                        }
-                        for (int k = 0; k < ns; ++k)
-                          out[slot * ns + k] = static_cast<float>(sum[k]);
-                      }
-                    });
+  const std::size_t per_slot = static_cast<std::size_t>(ns) * kKernelMoments;
+  for_blocks_shared(
+      *processes_, lattice_.block_count(), scene.settings.threads, out,
+      per_slot * NodeLattice::kBlockNodes, [&](std::size_t block) {
+        MediumPoint point;
+        // Per sample: ∫ K σs dV and its first moments along the lattice's axes.
+        std::vector<double> sum(per_slot);
+        for (std::size_t slot = block * NodeLattice::kBlockNodes;
+             slot < (block + 1) * NodeLattice::kBlockNodes; ++slot) {
+          if (!lattice_.slot_inside(slot)) continue;
+          const Vec3 node = lattice_.to_lattice(lattice_.slot_position(slot));
+          const int ni = static_cast<int>(std::lround(node.x)),
+                    nj = static_cast<int>(std::lround(node.y)),
+                    nk = static_cast<int>(std::lround(node.z));
+          std::fill(sum.begin(), sum.end(), 0.0);
+          auto add = [&](double w, const std::array<double, 3>& moment, auto&& sigma_s) {
+            for (int k = 0; k < ns; ++k) {
+              double* s = sum.data() + static_cast<std::size_t>(k) * kKernelMoments;
+              const double ws = sigma_s(k);
+              s[0] += w * ws;
+              for (int a = 0; a < 3; ++a) s[1 + a] += moment[a] * ws;
+            }
+          };
+          if (aligned) {
+            const std::size_t span = 2 * r + 1;
+            for (int dk = -r; dk <= r; ++dk)
+              for (int dj = -r; dj <= r; ++dj)
+                for (int di = -r; di <= r; ++di) {
+                  const std::size_t m = lattice_.slot_of(ni + di, nj + dj, nk + dk);
+                  if (m == NodeLattice::kNoSlot) continue;
+                  const std::size_t ix = ni * span + (di + r), iy = nj * span + (dj + r),
+                                    iz = nk * span + (dk + r);
+                  const double ox = overlap[0][ix], oy = overlap[1][iy], oz = overlap[2][iz];
+                  add(ox * oy * oz,
+                      {overlap_moment[0][ix] * oy * oz, ox * overlap_moment[1][iy] * oz,
+                       ox * oy * overlap_moment[2][iz]},
+                      [&](int k) { return at_nodes[m * ns + k]; });
+                }
+          } else {
+            const Vec3 p0 = lattice_.slot_position(slot);
+            const double h = lattice_.spacing_m();
+            for (std::size_t c = 0; c < gauss_u.size(); ++c)
+              for (std::size_t b = 0; b < gauss_u.size(); ++b)
+                for (std::size_t a = 0; a < gauss_u.size(); ++a) {
+                  const Vec3 offset(gauss_u[a] * h, gauss_u[b] * h, gauss_u[c] * h);
+                  medium.coefficients_at(p0 + lattice_.rotation() * offset, point);
+                  const double w = gauss_w[a] * gauss_w[b] * gauss_w[c];
+                  add(w, {w * gauss_u[a], w * gauss_u[b], w * gauss_u[c]},
+                      [&](int k) { return point.sigma_s[k]; });
+                }
+          }
+          for (std::size_t q = 0; q < per_slot; ++q)
+            out[slot * per_slot + q] = static_cast<float>(sum[q]);
+        }
+      });
   return out;
 }
 
 void RadianceCache::splat(const Scene& scene, const SpectralNode& node, int index,
-                          const std::vector<float>& kernel_sigma_s) {
+                          const std::vector<float>& kernel_moments) {
   const RadianceCacheSettings& settings = scene.settings.radiance_cache;
   auto t0 = std::chrono::steady_clock::now();
   PhotonTracingSettings tracing;
@@ -348,22 +388,51 @@ void RadianceCache::splat(const Scene& scene, const SpectralNode& node, int inde
       }
     }
   }
-  // Divide by ∫ K σs dV (kernel_scattering), at the node's wavelength.
-  const SpectralLerp lerp = node.lerp();
-  parallel_for(lattice_.block_count(), scene.settings.threads, [&](std::size_t block) {
-    std::vector<double> samples(static_cast<std::size_t>(spectral_count_));
+  normalise(index, node.lerp(), kernel_moments, sum, per_slot, r, scene.settings.threads);
+  splat_seconds += seconds_since(t0);
+}
+
+void RadianceCache::normalise(int index, const SpectralLerp& lerp,
+                              const std::vector<float>& kernel_moments,
+                              const std::vector<double>& sum, std::size_t per_slot,
+                              int kernel_radius, int threads) {
+  const std::size_t slots = lattice_.slot_count();
+  const std::size_t ns = static_cast<std::size_t>(spectral_count_);
+  // Per slot the estimate Σ/∫ K σs dV of every channel, and where it sits:
+  // the σs-weighted centroid of the node's kernel.
+  KernelEstimates estimates;
+  estimates.channels = per_slot;
+  estimates.value.assign(slots * per_slot, 0.0);
+  estimates.shift.assign(slots, {0.0, 0.0, 0.0});
+  estimates.held.assign(slots, 0);
+  parallel_for(lattice_.block_count(), threads, [&](std::size_t block) {
+    std::array<std::vector<double>, kKernelMoments> samples;
+    for (auto& m : samples) m.resize(ns);
     for (std::size_t slot = block * NodeLattice::kBlockNodes;
          slot < (block + 1) * NodeLattice::kBlockNodes; ++slot) {
-      for (int k = 0; k < spectral_count_; ++k)
-        samples[k] = kernel_sigma_s[slot * spectral_count_ + k];
-      const double norm = lerp(samples.data());
+      for (std::size_t k = 0; k < ns; ++k)
+        for (int q = 0; q < kKernelMoments; ++q)
+          samples[q][k] = kernel_moments[(slot * ns + k) * kKernelMoments + q];
+      const double norm = lerp(samples[0].data());
       if (!(norm > 0.0)) continue;
-      float* out = volume_.record(index, slot) + record::kSh;
+      estimates.held[slot] = 1;
       for (std::size_t c = 0; c < per_slot; ++c)
-        out[c] = static_cast<float>(sum[slot * per_slot + c] / norm);
+        estimates.value[slot * per_slot + c] = sum[slot * per_slot + c] / norm;
+      for (int a = 0; a < 3; ++a)
+        estimates.shift[slot][a] = std::clamp(lerp(samples[1 + a].data()) / norm,
+                                              -1.0 * kernel_radius, 1.0 * kernel_radius);
     }
   });
-  splat_seconds += seconds_since(t0);
+  const std::vector<double> moved = move_to_nodes(lattice_, estimates, threads);
+  parallel_for(lattice_.block_count(), threads, [&](std::size_t block) {
+    for (std::size_t slot = block * NodeLattice::kBlockNodes;
+         slot < (block + 1) * NodeLattice::kBlockNodes; ++slot) {
+      if (!estimates.held[slot]) continue;
+      float* out = volume_.record(index, slot) + record::kSh;
+      for (std::size_t c = 0; c < per_slot; ++c)
+        out[c] = static_cast<float>(moved[slot * per_slot + c]);
+    }
+  });
 }
 
 }  // namespace obscura

@@ -7,7 +7,8 @@
 //    and whether a surface shades the node from the sun (V_sun, 0 or 1); the
 //    sun's single scattering at a point is then
 //    σs p_HG(ω_sun·ω) E_sun V_sun e^{−τ_sun}, the phase function exact for
-//    each camera direction;
+//    each camera direction (a rim node outside the grid's box holds
+//    2 τ(face) − τ(inner neighbour): lattice_view.h, rim_face);
 //  * with the track-length splat, for the viewing directions ω_v of narrow
 //    sensors (as many as a record's padding holds: one or two), what the
 //    truncated harmonics leave out of the phase function towards ω_v,
@@ -24,7 +25,8 @@
 //      c_lm(n) = Σ_p ΔΦ_p Y_lm(ω_p) K(x_p − x_n) / ∫ K(x − x_n) σs(x) dV,
 //    the denominator because photons are stored where they scatter, at a rate
 //    σs L_in, so that the part of a kernel outside the cloud does not dilute
-//    the estimate near its edge.
+//    the estimate near its edge; each estimate is then moved from its
+//    kernel's σs-weighted centroid to its node (estimates_at_nodes.h).
 // When the lattice is laid on the cloud's own voxel grid the records also
 // hold the medium, and the camera march reads nothing else
 // (render/lattice/lattice_march.h). Deterministic for a given seed whatever
@@ -83,10 +85,19 @@ class RadianceCache {
  private:
   void compute_sun(const Scene& scene, const std::vector<SpectralNode>& nodes);
   void choose_peak_views(const Scene& scene);
-  // ∫ K(x − x_n) σs(x) dV per slot and medium sample: the splats' denominator.
+  // Per slot and medium sample, ∫ K(x − x_n) σs(x) dV (the splats'
+  // denominator) and its first moments ∫ K σs (x − x_n) dV along the
+  // lattice's axes, in node units: kKernelMoments values.
+  static constexpr int kKernelMoments = 4;
   std::vector<float> kernel_scattering(const Scene& scene) const;
   void splat(const Scene& scene, const SpectralNode& node, int index,
-             const std::vector<float>& kernel_sigma_s);
+             const std::vector<float>& kernel_moments);
+  // Spectral node `index`'s light channels from the splat's `sum`
+  // (per_slot values per slot): each divided by ∫ K σs dV and moved from its
+  // kernel's σs-weighted centroid to its node.
+  void normalise(int index, const SpectralLerp& lerp, const std::vector<float>& kernel_moments,
+                 const std::vector<double>& sum, std::size_t per_slot, int kernel_radius,
+                 int threads);
   // Whether the splats take the photons' flights (the track-length
   // estimate, flight_splat.h) rather than their collisions: where the
   // records hold the medium and the kernel is one spacing wide.
