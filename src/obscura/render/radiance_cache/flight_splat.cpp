@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <type_traits>
 #include <utility>
 
 #include "obscura/core/check.h"
@@ -133,6 +134,147 @@ void share_slabs(const NodeLattice& lattice, int axis, int slabs, int count,
                [&](int r) -> const IndexRanges& { return ranges[static_cast<std::size_t>(r)]; });
 }
 
+// One flight's contributions to the nodes of node layers [n0, n1) along
+// `axis` (`f` clipped to the cells whose corners reach them): Count
+// harmonics and Peaks sensor directions per node, known at compile time so
+// that the per-node loops unroll.
+template <int Count, int Peaks>
+void splat_flight(const PhotonFlight& flight, const LatticeFlight& f,
+                  const std::array<int, 3>& cell_lo, const std::array<int, 3>& cell_hi, int axis,
+                  int n0, int n1, const float* records, std::size_t stride, double inv_volume,
+                  int sh_degree, const std::vector<Vec3>& peak_views, CellCorners& cell_corners,
+                  std::vector<double>& sum) {
+  constexpr std::size_t per_slot = Count + Peaks;
+  std::array<double, kMaxShCoefficients> y;
+  spherical_harmonics(flight.dir(), y);
+  LatticeWalker walker(f.origin, f.direction, f.t0, f.t1, 1.0, cell_lo, cell_hi);
+  // The forward peak towards each sensor's direction, at the flight's
+  // cosine with it (only g changes along the flight).
+  std::array<HgBeyondDegree, kMaxPeakViews> beyond;
+  for (int v = 0; v < Peaks; ++v)
+    beyond[v] = HgBeyondDegree(dot(flight.dir(), peak_views[v]), sh_degree);
+  // The corners of the last cell and their ∫ hat σs dt so far (and
+  // ∫ hat σs q dt per sensor direction): a node on the face into the next
+  // cell carries its sums on, so each node takes the harmonics once per run
+  // of cells rather than once per cell.
+  std::array<std::size_t, 8> held_slot;
+  held_slot.fill(NodeLattice::kNoSlot);
+  std::array<double, 8> held{};
+  std::array<std::array<double, kMaxPeakViews>, 8> held_peak{};
+  std::array<int, 3> held_cell{-2, -2, -2};
+  const double scale = flight.power * inv_volume;
+  auto flush = [&](int c) {
+    const int n = held_cell[axis] + (c >> axis & 1);
+    if (held_slot[c] == NodeLattice::kNoSlot || n < n0 || n >= n1 || held[c] == 0.0) return;
+    double* acc = sum.data() + held_slot[c] * per_slot;
+    const double wc = scale * held[c];
+    for (int l = 0; l < Count; ++l) acc[l] += wc * y[l];
+    for (int v = 0; v < Peaks; ++v) acc[Count + v] += scale * held_peak[c][v];
+  };
+  std::array<std::size_t, 8> slot;
+  std::array<int, 3> cell;
+  double ta, tb;
+  while (walker.next(cell, ta, tb)) {
+    if (!(tb > ta) || cell[axis] + 1 < n0 || cell[axis] >= n1) continue;
+    cell_corners(cell, slot);
+    // σs (and σs g, for the forward peak's g) at the corners (zero in
+    // blocks the lattice does not hold), then ∫ hat_c σs dt over the cell's
+    // piece for each corner c.
+    std::array<double, 8> corner_sigma_s{}, corner_sigma_s_g{};
+    for (int c = 0; c < 8; ++c) {
+      if (slot[c] == NodeLattice::kNoSlot) continue;
+      const float* r = records + slot[c] * stride;
+      corner_sigma_s[c] = r[record::kSigmaS];
+      if constexpr (Peaks > 0) corner_sigma_s_g[c] = r[record::kSigmaSG];
+    }
+    std::array<double, 8> weight{};
+    std::array<std::array<double, kMaxPeakViews>, 8> peak_weight{};
+    for (int q = 0; q < 3; ++q) {
+      const double t = ta + (tb - ta) * kGaussT[q];
+      double fx[3];
+      for (int a = 0; a < 3; ++a)
+        fx[a] = std::clamp(f.origin[a] + t * f.direction[a] - cell[a], 0.0, 1.0);
+      // The trilinear weights, corner c = x + 2 y + 4 z, as products of the
+      // yz pairs and the x pair.
+      const double yz[4] = {(1 - fx[1]) * (1 - fx[2]), fx[1] * (1 - fx[2]), (1 - fx[1]) * fx[2],
+                            fx[1] * fx[2]};
+      std::array<double, 8> w;
+      for (int k = 0; k < 4; ++k) {
+        w[2 * k] = (1 - fx[0]) * yz[k];
+        w[2 * k + 1] = fx[0] * yz[k];
+      }
+      double sigma_s = 0.0;
+      for (int c = 0; c < 8; ++c) sigma_s += w[c] * corner_sigma_s[c];
+      const double gw = kGaussW[q] * (tb - ta) * sigma_s;
+      for (int c = 0; c < 8; ++c) weight[c] += gw * w[c];
+      if constexpr (Peaks > 0) {
+        if (!(sigma_s > 0.0)) continue;
+        double sigma_s_g = 0.0;
+        for (int c = 0; c < 8; ++c) sigma_s_g += w[c] * corner_sigma_s_g[c];
+        const double g = cache_clamped_g(sigma_s_g / sigma_s);
+        for (int v = 0; v < Peaks; ++v) {
+          const double gq = gw * beyond[v](g);
+          for (int c = 0; c < 8; ++c) peak_weight[c][v] += gq * w[c];
+        }
+      }
+    }
+    // One step along one axis: the held corners on the shared face move to
+    // the opposite side of the new cell; the others are done.
+    int step_axis = -1, steps = 0;
+    for (int a = 0; a < 3; ++a)
+      if (cell[a] != held_cell[a]) {
+        step_axis = a;
+        steps += std::abs(cell[a] - held_cell[a]);
+      }
+    if (steps == 1) {
+      const int side = cell[step_axis] > held_cell[step_axis] ? 1 : 0;
+      for (int c = 0; c < 8; ++c)
+        if ((c >> step_axis & 1) == side) {
+          weight[c ^ (1 << step_axis)] += held[c];
+          for (int v = 0; v < Peaks; ++v) peak_weight[c ^ (1 << step_axis)][v] += held_peak[c][v];
+        } else {
+          flush(c);
+        }
+    } else {
+      for (int c = 0; c < 8; ++c) flush(c);
+    }
+    held = weight;
+    if constexpr (Peaks > 0) held_peak = peak_weight;
+    held_slot = slot;
+    held_cell = cell;
+  }
+  for (int c = 0; c < 8; ++c) flush(c);
+}
+
+// Calls f(std::integral_constant<int, Count>, std::integral_constant<int,
+// Peaks>) for the harmonics' count at `sh_degree` and `peaks` sensor
+// directions.
+template <class F>
+void dispatch_splat(int sh_degree, int peaks, F&& f) {
+  auto with_peaks = [&](auto count) {
+    switch (peaks) {
+      case 0:
+        return f(count, std::integral_constant<int, 0>{});
+      case 1:
+        return f(count, std::integral_constant<int, 1>{});
+      default:
+        OBSCURA_CHECK(peaks == 2 && kMaxPeakViews == 2);
+        return f(count, std::integral_constant<int, 2>{});
+    }
+  };
+  switch (sh_degree) {
+    case 0:
+      return with_peaks(std::integral_constant<int, 1>{});
+    case 1:
+      return with_peaks(std::integral_constant<int, 4>{});
+    case 2:
+      return with_peaks(std::integral_constant<int, 9>{});
+    default:
+      OBSCURA_CHECK(sh_degree == kMaxShDegree);
+      return with_peaks(std::integral_constant<int, kMaxShCoefficients>{});
+  }
+}
+
 }  // namespace
 
 void splat_flights(const LatticeVolume& volume, int node, const std::vector<PhotonFlight>& flights,
@@ -174,117 +316,28 @@ void splat_flights(const LatticeVolume& volume, int node, const std::vector<Phot
 
   const std::size_t own = static_cast<std::size_t>(slabs) / ranks +
                           (rank < static_cast<std::size_t>(slabs) % ranks ? 1 : 0);
-  parallel_for(own, threads, [&](std::size_t task) {
-    const std::size_t s = task * ranks + rank;
-    // Node layers n0 … n1 − 1 along the slabs' axis.
-    const int n0 = static_cast<int>(s) * kSlabLayers, n1 = std::min(n0 + kSlabLayers, dims[axis]);
-    std::array<double, kMaxShCoefficients> y;
-    std::array<std::size_t, 8> slot;
-    std::array<int, 3> cell;
-    CellCorners cell_corners(lattice);
-    for (const std::uint32_t i : reach[s]) {
-      const PhotonFlight& flight = flights[i];
-      LatticeFlight f;
-      to_lattice(volume, flight, f);
-      // The part of it in the cells whose corners reach the slab's node
-      // layers, cells n0 − 1 … n1 − 1 (the walker must start inside its range).
-      const int c0 = std::max(n0 - 1, 0), c1 = std::min(n1 - 1, dims[axis] - 2);
-      if (!clip_to_layers(f, axis, c0, c1 + 1)) continue;
-      std::array<int, 3> cell_lo{0, 0, 0}, cell_hi{dims[0] - 2, dims[1] - 2, dims[2] - 2};
-      cell_lo[axis] = c0;
-      cell_hi[axis] = c1;
-      spherical_harmonics(flight.dir(), y);
-      LatticeWalker walker(f.origin, f.direction, f.t0, f.t1, 1.0, cell_lo, cell_hi);
-      // The forward peak towards each sensor's direction, at the flight's
-      // cosine with it (only g changes along the flight).
-      std::array<HgBeyondDegree, kMaxPeakViews> beyond;
-      for (int v = 0; v < peaks; ++v)
-        beyond[v] = HgBeyondDegree(dot(flight.dir(), peak_views[v]), sh_degree);
-      // The corners of the last cell and their ∫ hat σs dt so far (and
-      // ∫ hat σs q dt per sensor direction): a node on the face into the
-      // next cell carries its sums on, so each node takes the harmonics once
-      // per run of cells rather than once per cell.
-      std::array<std::size_t, 8> held_slot;
-      held_slot.fill(NodeLattice::kNoSlot);
-      std::array<double, 8> held{};
-      std::array<std::array<double, kMaxPeakViews>, 8> held_peak{};
-      std::array<int, 3> held_cell{-2, -2, -2};
-      const double scale = flight.power * inv_volume;
-      auto flush = [&](int c) {
-        const int n = held_cell[axis] + (c >> axis & 1);
-        if (held_slot[c] == NodeLattice::kNoSlot || n < n0 || n >= n1 || held[c] == 0.0) return;
-        double* acc = sum.data() + held_slot[c] * per_slot;
-        const double wc = scale * held[c];
-        for (int l = 0; l < count; ++l) acc[l] += wc * y[l];
-        for (int v = 0; v < peaks; ++v) acc[count + v] += scale * held_peak[c][v];
-      };
-      double ta, tb;
-      while (walker.next(cell, ta, tb)) {
-        if (!(tb > ta) || cell[axis] + 1 < n0 || cell[axis] >= n1) continue;
-        cell_corners(cell, slot);
-        // σs (and σs g, for the forward peak's g) at the corners (zero in
-        // blocks the lattice does not hold), then ∫ hat_c σs dt over the
-        // cell's piece for each corner c.
-        std::array<double, 8> corner_sigma_s{}, corner_sigma_s_g{};
-        for (int c = 0; c < 8; ++c) {
-          if (slot[c] == NodeLattice::kNoSlot) continue;
-          const float* r = records + slot[c] * stride;
-          corner_sigma_s[c] = r[record::kSigmaS];
-          if (peaks > 0) corner_sigma_s_g[c] = r[record::kSigmaSG];
-        }
-        std::array<double, 8> weight{};
-        std::array<std::array<double, kMaxPeakViews>, 8> peak_weight{};
-        for (int q = 0; q < 3; ++q) {
-          const double t = ta + (tb - ta) * kGaussT[q];
-          double fx[3];
-          for (int a = 0; a < 3; ++a)
-            fx[a] = std::clamp(f.origin[a] + t * f.direction[a] - cell[a], 0.0, 1.0);
-          std::array<double, 8> w;
-          double sigma_s = 0.0;
-          for (int c = 0; c < 8; ++c) {
-            w[c] = ((c & 1) ? fx[0] : 1 - fx[0]) * ((c & 2) ? fx[1] : 1 - fx[1]) *
-                   ((c & 4) ? fx[2] : 1 - fx[2]);
-            sigma_s += w[c] * corner_sigma_s[c];
-          }
-          const double gw = kGaussW[q] * (tb - ta) * sigma_s;
-          for (int c = 0; c < 8; ++c) weight[c] += gw * w[c];
-          if (peaks == 0 || !(sigma_s > 0.0)) continue;
-          double sigma_s_g = 0.0;
-          for (int c = 0; c < 8; ++c) sigma_s_g += w[c] * corner_sigma_s_g[c];
-          const double g = cache_clamped_g(sigma_s_g / sigma_s);
-          for (int v = 0; v < peaks; ++v) {
-            const double gq = gw * beyond[v](g);
-            for (int c = 0; c < 8; ++c) peak_weight[c][v] += gq * w[c];
-          }
-        }
-        // One step along one axis: the held corners on the shared face move to
-        // the opposite side of the new cell; the others are done.
-        int step_axis = -1, steps = 0;
-        for (int a = 0; a < 3; ++a)
-          if (cell[a] != held_cell[a]) {
-            step_axis = a;
-            steps += std::abs(cell[a] - held_cell[a]);
-          }
-        if (steps == 1) {
-          const int side = cell[step_axis] > held_cell[step_axis] ? 1 : 0;
-          for (int c = 0; c < 8; ++c)
-            if ((c >> step_axis & 1) == side) {
-              weight[c ^ (1 << step_axis)] += held[c];
-              for (int v = 0; v < peaks; ++v)
-                peak_weight[c ^ (1 << step_axis)][v] += held_peak[c][v];
-            } else {
-              flush(c);
-            }
-        } else {
-          for (int c = 0; c < 8; ++c) flush(c);
-        }
-        held = weight;
-        held_peak = peak_weight;
-        held_slot = slot;
-        held_cell = cell;
+  dispatch_splat(sh_degree, peaks, [&](auto count_constant, auto peaks_constant) {
+    constexpr int kCount = decltype(count_constant)::value,
+                  kPeaks = decltype(peaks_constant)::value;
+    parallel_for(own, threads, [&](std::size_t task) {
+      const std::size_t s = task * ranks + rank;
+      // Node layers n0 … n1 − 1 along the slabs' axis.
+      const int n0 = static_cast<int>(s) * kSlabLayers, n1 = std::min(n0 + kSlabLayers, dims[axis]);
+      CellCorners cell_corners(lattice);
+      for (const std::uint32_t i : reach[s]) {
+        LatticeFlight f;
+        to_lattice(volume, flights[i], f);
+        // The part of it in the cells whose corners reach the slab's node
+        // layers, cells n0 − 1 … n1 − 1 (the walker must start inside its range).
+        const int c0 = std::max(n0 - 1, 0), c1 = std::min(n1 - 1, dims[axis] - 2);
+        if (!clip_to_layers(f, axis, c0, c1 + 1)) continue;
+        std::array<int, 3> cell_lo{0, 0, 0}, cell_hi{dims[0] - 2, dims[1] - 2, dims[2] - 2};
+        cell_lo[axis] = c0;
+        cell_hi[axis] = c1;
+        splat_flight<kCount, kPeaks>(flights[i], f, cell_lo, cell_hi, axis, n0, n1, records, stride,
+                                     inv_volume, sh_degree, peak_views, cell_corners, sum);
       }
-      for (int c = 0; c < 8; ++c) flush(c);
-    }
+    });
   });
   if (ranks > 1) share_slabs(lattice, axis, slabs, static_cast<int>(per_slot), processes, sum);
 }
