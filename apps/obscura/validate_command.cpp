@@ -61,9 +61,10 @@ void add_options(CLI::App* cmd, ValidateOptions* o) {
       ->check(CLI::IsMember(methods))
       ->capture_default_str();
   PhotonMapSettings& pm = o->settings.photon_map;
-  cmd->add_option("--photons", o->photons,
-                  "photonmap, radiance-cache: photons launched per spectral node (default: "
-                  "200000, radiance-cache 4000000: the closed-form cases resolve 0.5 %)");
+  cmd->add_option(
+      "--photons", o->photons,
+      "photonmap, radiance-cache: photons launched per spectral node (default: "
+      "200000; radiance-cache 16000000, slab 4000000: the closed-form cases resolve 0.5 %)");
   cmd->add_option("--k", pm.k, "photonmap: nearest photons per estimate")->capture_default_str();
   cmd->add_option("--max-radius", pm.max_radius_m, "photonmap: search radius cap, m")
       ->capture_default_str();

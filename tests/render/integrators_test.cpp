@@ -24,8 +24,9 @@ class EveryIntegrator : public ::testing::TestWithParam<RenderMethod> {
     ValidationOptions o;
     o.settings.method = GetParam();
     o.settings.photon_map.photons_per_node = 100000;
-    // The cache's noise is fixed along every ray: 4e6 photons resolve 0.5 %.
-    o.settings.radiance_cache.photons_per_node = 4000000;
+    // The cache's noise is fixed along every ray: 1.6e7 photons resolve 0.5 %
+    // for every seed tried (4e6 did not for seed 1: −0.64 % in the furnace).
+    o.settings.radiance_cache.photons_per_node = 16000000;
     return o;
   }
 };

@@ -105,7 +105,22 @@ struct Launch {
 // A photon's journey after launch: free flights by delta tracking, stored at
 // scattering events (all of them with store_first_scatter, else from the
 // second on for sun and environment photons), Russian roulette by the
-// albedo at collisions and by the reflectance at surfaces.
+// albedo at collisions (or absorption by weight, below) and by the
+// reflectance at surfaces.
+//
+// Absorption by weight (absorb_by_weight; "implicit capture", survival
+// biasing; Spanier & Gelbard 1969, §3): at a real collision the power is
+// multiplied by the albedo Λ = σs/σt rather than the photon ended with
+// probability 1 − Λ;
+// once it falls below kRouletteShare of the launch power P₀, Russian
+// roulette keeps it with probability P/(kRouletteShare P₀) at
+// kRouletteShare P₀. Both keep the expected power at every collision, so
+// the estimates are unchanged in expectation; every photon contributes
+// more flights, each of less power: on the smoke cube (albedo 0.9) the
+// radiance cache's error at 8·10⁵ photons fell from 2.56 % to 2.02 %
+// (three seeds) for 23 % more time (docs/performance.md).
+constexpr double kRouletteShare = 0.5;
+
 // What one chunk of photons keeps: stored photons, or their flights.
 struct ChunkRecord {
   std::vector<Photon> photons;
@@ -126,6 +141,7 @@ void trace_photon(const Scene& scene, const SpectralNode& node, const SpectralLe
                   MediumPoint& scratch, ChunkRecord& record) {
   Ray ray = l.ray;
   bool scattered = l.scattered;
+  double power = l.power;
   for (int bounce = 0; bounce < settings.max_scatterings; ++bounce) {
     SurfaceHit hit;
     const bool on_surface =
@@ -144,19 +160,28 @@ void trace_photon(const Scene& scene, const SpectralNode& node, const SpectralLe
         else
           end = 0.0;
       }
-      if (end > 0.0) record.flights.push_back(flight_of(ray, end, l.power));
+      if (end > 0.0) record.flights.push_back(flight_of(ray, end, power));
     }
     if (t) {
       const double sigma_a = lambda(scratch.sigma_a.data()),
                    sigma_s = lambda(scratch.sigma_s.data());
-      if (rng.uniform() * (sigma_a + sigma_s) >= sigma_s) return;  // absorbed
+      if (settings.absorb_by_weight) {
+        power *= sigma_s / (sigma_a + sigma_s);
+        if (!(power > 0.0)) return;
+        if (power < kRouletteShare * l.power) {
+          if (rng.uniform() * kRouletteShare * l.power >= power) return;  // absorbed
+          power = kRouletteShare * l.power;
+        }
+      } else if (rng.uniform() * (sigma_a + sigma_s) >= sigma_s) {
+        return;  // absorbed
+      }
       const Vec3 x = ray.at(*t);
       if (counts && !settings.flights)
         record.photons.push_back(
             Photon{{static_cast<float>(x.x), static_cast<float>(x.y), static_cast<float>(x.z)},
                    {static_cast<float>(ray.direction.x), static_cast<float>(ray.direction.y),
                     static_cast<float>(ray.direction.z)},
-                   static_cast<float>(l.power)});
+                   static_cast<float>(power)});
       scattered = true;
       const HenyeyGreenstein phase(std::clamp(lambda(scratch.g.data()), -0.999999, 0.999999));
       ray = Ray{x, phase.sample(ray.direction, rng.uniform(), rng.uniform(), nullptr)};

@@ -3,9 +3,10 @@
 // paper's method): photons are emitted from every light source in proportion
 // to its power, traced through the cloud by delta tracking, continued at each
 // real collision with probability Λ = σs/σt (Russian roulette with the
-// scattering albedo, so a photon's power never changes) in a direction drawn
-// from the HG phase function, and stored at scattering events. One set of
-// photons per spectral node (the medium's coefficients depend on wavelength).
+// scattering albedo, so a photon's power never changes; or, with
+// absorb_by_weight, at their power times Λ) in a direction drawn from the HG
+// phase function, and stored at scattering events. One set of photons per
+// spectral node (the medium's coefficients depend on wavelength).
 //
 // Sources (docs/physics.md, "Volume photon mapping"), all for a node at λ:
 //  * the sun: directions uniform over its disc, start points uniform on a disc
@@ -72,6 +73,11 @@ struct PhotonTracingSettings {
   // those of such photons that leave the medium or meet a surface), instead
   // of the stored photons: TracedPhotons::flights, photons left empty.
   bool flights = false;
+  // At a real collision multiply the power by the albedo Λ (Russian roulette
+  // below half the launch power) instead of ending the photon with
+  // probability 1 − Λ at unchanged power: more, weaker flights, less noise
+  // per photon where the albedo is high (the radiance cache's choice).
+  bool absorb_by_weight = false;
 };
 
 // Spectral powers (W µm⁻¹) per source kind.

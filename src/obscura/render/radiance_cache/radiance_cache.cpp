@@ -347,6 +347,7 @@ void RadianceCache::splat(const Scene& scene, const SpectralNode& node, int inde
   // The flights' tracks where the records hold the medium and the kernel is
   // the lattice's own hat (flight_splat.h), else the collisions.
   tracing.flights = splats_flights(settings);
+  tracing.absorb_by_weight = true;
   // One block of 2^40 photon streams per spectral node, above the pixels'.
   const std::uint64_t base = (static_cast<std::uint64_t>(index) + 1) << 40;
   TracedPhotons traced = trace_photons(scene, node, base, tracing);
