@@ -33,7 +33,7 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 // 1): the splatting kernel against the lattice's linear interpolation, one
 // axis, at node offset k (|k| ≤ r), the medium present only on [lo, hi]
 // (node units, relative to the kernel's node); with m = 1 the kernel's first
-// moment, whose ratio to m = 0 is where the estimate sits (centroid_shift).
+// moment, whose ratio to m = 0 is where the estimate sits (estimates_at_nodes.h).
 // Simpson's rule between the integrand's breakpoints, where it is at most a
 // cubic: exact.
 double kernel_overlap(int r, int k, double lo, double hi, int moment) {
