@@ -112,6 +112,16 @@ PreparationStats LatticeBatchIntegrator::preparation(int sensor) const {
   return sensor == 0 ? preparation_ : PreparationStats{};
 }
 
+void LatticeBatchIntegrator::add_surface_light(const CameraRay& ray, int sensor, int band,
+                                               double* behind) const {
+  if (!cache_) return;
+  add_ground_light(
+      scene(), *cache_, ray,
+      spectra()[static_cast<std::size_t>(sensor)][static_cast<std::size_t>(band)],
+      distinct_.index[static_cast<std::size_t>(sensor)][static_cast<std::size_t>(band)].data(),
+      behind);
+}
+
 void LatticeBatchIntegrator::march_batch(int sensor, std::span<const CameraRay> rays,
                                          MediumBatch& out) const {
   const std::vector<SpectralNodes>& bands = spectra()[static_cast<std::size_t>(sensor)];

@@ -34,6 +34,7 @@ class LatticeBatchIntegrator final : public BatchIntegrator {
 
   RenderMethod method() const override { return scene().settings.method; }
   void march_batch(int sensor, std::span<const CameraRay> rays, MediumBatch& out) const override;
+  void add_surface_light(const CameraRay& ray, int sensor, int band, double* behind) const override;
   PreparationStats preparation(int sensor) const override;
 
   const LatticeExecutor& executor() const { return *executor_; }

@@ -36,6 +36,7 @@ void BatchIntegrator::band_radiance(const CameraRay& ray, int sensor, int band, 
   std::array<double, kMaxSpectralNodes> behind;
   background_radiance(scene_, ray, nodes, static_cast<Workspace&>(workspace).background,
                       behind.data());
+  add_surface_light(ray, sensor, band, behind.data());
   for (std::size_t j = 0; j < nodes.size(); ++j) {
     transmittance[j] = batch.transmittance[first + j];
     radiance[j] = batch.radiance[first + j] + transmittance[j] * behind[j];

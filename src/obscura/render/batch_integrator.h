@@ -38,6 +38,11 @@ class BatchIntegrator : public Integrator {
   void band_radiance(const CameraRay& ray, int sensor, int band, Rng& rng, RayWorkspace& workspace,
                      double* radiance, double* transmittance) const final;
   std::unique_ptr<RayWorkspace> make_workspace() const override;
+  // Light a surface seen by `ray` receives that its own radiance
+  // (render/background.h) leaves out, added to `behind` (band `band` of
+  // sensor `sensor`): the radiance cache's cloud light on the ground.
+  virtual void add_surface_light(const CameraRay& /*ray*/, int /*sensor*/, int /*band*/,
+                                 double* /*behind*/) const {}
 
  protected:
   // The staged scene and the nodes of every sensor's bands (spectra[sensor]

@@ -14,6 +14,7 @@
 // from these floats (photon/photon_map.h). The struct is an aggregate so the
 // tracer can write Photon{{x, y, z}, {dx, dy, dz}, power}.
 #include <cstddef>
+#include <cstdint>
 
 #include "obscura/core/vec3.h"
 
@@ -51,5 +52,20 @@ struct PhotonFlight {
 };
 
 static_assert(sizeof(PhotonFlight) == 32, "PhotonFlight must stay 8 floats with no padding");
+
+// Power a surface's own radiance leaves out when the cloud is not in it
+// (render/photon_map/photon_tracing.h, surface_deposits): a photon arriving
+// at the surface after scattering (power > 0), or the power a sky photon's
+// first collision took from the straight line to the surface beyond it
+// (power < 0), W µm⁻¹, at the point where it meets the surface.
+struct SurfaceDeposit {
+  float position_m[3];
+  float power;
+  std::int32_t surface;  // index into Scene::surfaces
+
+  Vec3 position() const { return {position_m[0], position_m[1], position_m[2]}; }
+};
+
+static_assert(sizeof(SurfaceDeposit) == 20, "SurfaceDeposit must stay 5 words with no padding");
 
 }  // namespace obscura

@@ -100,6 +100,7 @@ struct Launch {
   double power = 0;          // W µm⁻¹
   bool scattered = false;    // counts as scattered already (emission photons)
   bool store_first = false;  // store its first scattering although it has not scattered yet
+  bool from_sky = false;     // an environment photon from the sky (not from a surface)
 };
 
 // A photon's journey after launch: free flights by delta tracking, stored at
@@ -125,6 +126,7 @@ constexpr double kRouletteShare = 0.5;
 struct ChunkRecord {
   std::vector<Photon> photons;
   std::vector<PhotonFlight> flights;
+  std::vector<SurfaceDeposit> deposits;
 };
 
 PhotonFlight flight_of(const Ray& ray, double length_m, double power) {
@@ -162,6 +164,17 @@ void trace_photon(const Scene& scene, const SpectralNode& node, const SpectralLe
       }
       if (end > 0.0) record.flights.push_back(flight_of(ray, end, power));
     }
+    auto deposit = [&](const Vec3& x, double p, int surface) {
+      record.deposits.push_back(SurfaceDeposit{
+          {static_cast<float>(x.x), static_cast<float>(x.y), static_cast<float>(x.z)},
+          static_cast<float>(p),
+          static_cast<std::int32_t>(surface)});
+    };
+    // A sky photon's first collision takes its power from the straight line
+    // to the surface beyond, which the surface's own radiance counts as
+    // arriving.
+    if (settings.surface_deposits && t && on_surface && l.from_sky && !scattered)
+      deposit(ray.at(hit.t), -power, hit.surface);
     if (t) {
       const double sigma_a = lambda(scratch.sigma_a.data()),
                    sigma_s = lambda(scratch.sigma_s.data());
@@ -187,6 +200,7 @@ void trace_photon(const Scene& scene, const SpectralNode& node, const SpectralLe
       ray = Ray{x, phase.sample(ray.direction, rng.uniform(), rng.uniform(), nullptr)};
     } else if (on_surface) {
       if (!scattered) return;  // its reflection is in the surface's own radiance
+      if (settings.surface_deposits) deposit(ray.at(hit.t), power, hit.surface);
       const double reflectance =
           scene.surfaces[hit.surface]->material().reflectance_at(node.wavelength_um);
       if (rng.uniform() >= reflectance) return;
@@ -274,6 +288,7 @@ class PhotonSources {
     } else {
       radiance = scene_.sky.radiance(-d, node_.wavelength_um);
       l.ray = Ray{p - d * (1.01 * sphere_.radius_m), d};
+      l.from_sky = true;
     }
     l.power = radiance * kFourPi * disc_area_;
     return l;
@@ -349,6 +364,7 @@ void share_chunks(const ProcessGroup& processes, std::vector<ChunkRecord>& store
     out.put(launched[c]);
     out.put_vector(stored[c].photons);
     out.put_vector(stored[c].flights);
+    out.put_vector(stored[c].deposits);
   }
   const std::vector<std::string> all = processes.all_gather(out.take());
   for (std::size_t r = 0; r < ranks; ++r) {
@@ -358,6 +374,7 @@ void share_chunks(const ProcessGroup& processes, std::vector<ChunkRecord>& store
       launched[c] = in.get<std::array<double, 3>>();
       stored[c].photons = in.get_vector<Photon>();
       stored[c].flights = in.get_vector<PhotonFlight>();
+      stored[c].deposits = in.get_vector<SurfaceDeposit>();
     }
     OBSCURA_CHECK(in.done());
   }
@@ -433,8 +450,9 @@ TracedPhotons trace_photons(const Scene& scene, const SpectralNode& node, std::u
       launched[c][source] += l.power;
       if (l.power > 0) trace_photon(scene, node, lambda, l, settings, rng, scratch, stored[c]);
     }
-    const std::uint64_t bytes =
-        stored[c].photons.size() * sizeof(Photon) + stored[c].flights.size() * sizeof(PhotonFlight);
+    const std::uint64_t bytes = stored[c].photons.size() * sizeof(Photon) +
+                                stored[c].flights.size() * sizeof(PhotonFlight) +
+                                stored[c].deposits.size() * sizeof(SurfaceDeposit);
     if ((stored_bytes += bytes) > limit) over = true;
   });
   // Every process the same verdict, so that none waits in a collective
@@ -471,6 +489,7 @@ TracedPhotons trace_photons(const Scene& scene, const SpectralNode& node, std::u
   for (std::size_t c = 0; c < chunks; ++c) {
     out.photons.insert(out.photons.end(), stored[c].photons.begin(), stored[c].photons.end());
     out.flights.insert(out.flights.end(), stored[c].flights.begin(), stored[c].flights.end());
+    out.deposits.insert(out.deposits.end(), stored[c].deposits.begin(), stored[c].deposits.end());
     out.launched.sun_w_um += launched[c][kSun];
     out.launched.environment_w_um += launched[c][kEnvironment];
     out.launched.emission_w_um += launched[c][kEmission];

@@ -78,6 +78,12 @@ struct PhotonTracingSettings {
   // probability 1 − Λ at unchanged power: more, weaker flights, less noise
   // per photon where the albedo is high (the radiance cache's choice).
   bool absorb_by_weight = false;
+  // Also keep TracedPhotons::deposits: the light the surfaces' own radiance
+  // (render/background.h, which sees the sky as if no cloud were there)
+  // leaves out: scattered photons arriving at a surface, and minus the
+  // power a sky photon's first collision took from its straight line to a
+  // surface (the radiance cache's ground light).
+  bool surface_deposits = false;
 };
 
 // Spectral powers (W µm⁻¹) per source kind.
@@ -89,6 +95,7 @@ struct PhotonSourcePowers {
 struct TracedPhotons {
   std::vector<Photon> photons;              // stored at scattering events
   std::vector<PhotonFlight> flights;        // with settings.flights: the flights instead
+  std::vector<SurfaceDeposit> deposits;     // with settings.surface_deposits
   PhotonSourcePowers launched;              // Σ of the launched photons' powers per source
   PhotonSourcePowers estimated;             // the powers used to share the photons out
   long long launched_count[3] = {0, 0, 0};  // sun, environment, emission

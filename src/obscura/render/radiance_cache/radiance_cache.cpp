@@ -126,6 +126,7 @@ RadianceCache::RadianceCache(const Scene& scene, const std::vector<SpectralNode>
   check_memory(static_cast<std::uint64_t>(bytes), "", "render/radiance_cache/voxel_m",
                fmt::format("building the radiance cache ({} nodes at {:.4g} m)", slots,
                            lattice_.spacing_m()));
+  ground_.resize(nodes.size());
   choose_peak_views(scene);
   const std::vector<float> kernel_moments = kernel_scattering(scene);
   const auto sun_start = std::chrono::steady_clock::now();
@@ -348,10 +349,20 @@ void RadianceCache::splat(const Scene& scene, const SpectralNode& node, int inde
   // the lattice's own hat (flight_splat.h), else the collisions.
   tracing.flights = splats_flights(settings);
   tracing.absorb_by_weight = true;
+  // The cloud's light on flat ground (ground_light.h).
+  bool has_ground = false;
+  for (const auto& surface : scene.surfaces)
+    has_ground = has_ground || dynamic_cast<const GroundPlane*>(surface.get()) != nullptr;
+  tracing.surface_deposits = has_ground && !lattice_.periodic();
   // One block of 2^40 photon streams per spectral node, above the pixels'.
   const std::uint64_t base = (static_cast<std::uint64_t>(index) + 1) << 40;
   TracedPhotons traced = trace_photons(scene, node, base, tracing);
   photons_stored_ += tracing.flights ? traced.flights.size() : traced.photons.size();
+  if (tracing.surface_deposits) {
+    const BoundingSphere sphere = photon_bounding_sphere(scene);
+    ground_[static_cast<std::size_t>(index)] =
+        GroundLight(scene, traced.deposits, sphere.center, 2.0 * sphere.radius_m);
+  }
   photon_seconds += seconds_since(t0);
 
   t0 = std::chrono::steady_clock::now();
@@ -434,6 +445,16 @@ void RadianceCache::normalise(int index, const SpectralLerp& lerp,
         out[c] = static_cast<float>(moved[slot * per_slot + c]);
     }
   });
+}
+
+void add_ground_light(const Scene& scene, const RadianceCache& cache, const CameraRay& camera,
+                      const SpectralNodes& nodes, const int* record, double* behind) {
+  if (!camera.on_surface || !cache.ground(0).covers(camera.hit.surface)) return;
+  const SurfaceMaterial& m = scene.surfaces[camera.hit.surface]->material();
+  const Vec3 p = camera.ray.at(camera.hit.t);
+  for (std::size_t j = 0; j < nodes.size(); ++j)
+    behind[j] += m.reflectance_at(nodes.nodes()[j].wavelength_um) * std::numbers::inv_pi *
+                 cache.ground(record[j]).irradiance(p);
 }
 
 }  // namespace obscura

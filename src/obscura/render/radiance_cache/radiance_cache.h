@@ -38,6 +38,7 @@
 #include "obscura/render/integrator.h"
 #include "obscura/render/lattice/lattice_volume.h"
 #include "obscura/render/lattice/node_lattice.h"
+#include "obscura/render/radiance_cache/ground_light.h"
 #include "obscura/render/radiance_cache/spherical_harmonics.h"
 
 namespace obscura {
@@ -76,6 +77,9 @@ class RadianceCache {
   // then τ_sun, V_sun and the sh_count() coefficients c_lm of the incident
   // radiance (W m⁻² sr⁻¹ µm⁻¹ × sr), from record::kTauSun on.
   const LatticeVolume& volume() const { return volume_; }
+  // The cloud's light on flat ground at spectral node `node` (its index in
+  // the order given; ground_light.h): empty without GroundPlane surfaces.
+  const GroundLight& ground(int node) const { return ground_[static_cast<std::size_t>(node)]; }
 
   // What building it cost.
   std::uint64_t photons_stored() const { return photons_stored_; }
@@ -115,7 +119,15 @@ class RadianceCache {
   std::vector<int> sensor_peak_;
   SunDepths sun_depths_ = SunDepths::kHere;
   LatticeVolume volume_;
+  std::vector<GroundLight> ground_;  // per spectral node
   std::uint64_t photons_stored_ = 0;
 };
+
+// Adds to `behind[j]` (a surface's radiance seen along camera ray `camera`,
+// render/background.h) the cloud's light on the ground, ρ ΔE / π
+// (ground_light.h), when the ray ends on ground the cache's maps cover;
+// `record[j]` is node j's spectral node in the cache.
+void add_ground_light(const Scene& scene, const RadianceCache& cache, const CameraRay& camera,
+                      const SpectralNodes& nodes, const int* record, double* behind);
 
 }  // namespace obscura

@@ -55,6 +55,11 @@ void RadianceCacheIntegrator::band_radiance(const CameraRay& camera, int sensor,
   std::array<double, kMaxSpectralNodes> behind;
   auto& ws = static_cast<Workspace&>(workspace);
   background_radiance(scene_, camera, nodes, ws.background, behind.data());
+  // The cloud's light on the ground, which the surface's own radiance leaves
+  // out (ground_light.h).
+  if (cache_)
+    add_ground_light(scene_, *cache_, camera, nodes, distinct_.index[sensor][band].data(),
+                     behind.data());
   for (int j = 0; j < n; ++j) radiance[j] += transmittance[j] * behind[j];
 }
 
