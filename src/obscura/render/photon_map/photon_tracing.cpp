@@ -112,10 +112,9 @@ struct Launch {
 // Absorption by weight (absorb_by_weight; "implicit capture", survival
 // biasing; Spanier & Gelbard 1969, §3): at a real collision the power is
 // multiplied by the albedo Λ = σs/σt rather than the photon ended with
-// probability 1 − Λ;
-// once it falls below kRouletteShare of the launch power P₀, Russian
-// roulette keeps it with probability P/(kRouletteShare P₀) at
-// kRouletteShare P₀. Both keep the expected power at every collision, so
+// probability 1 − Λ; once it falls below kRouletteShare of the launch
+// power P₀, Russian roulette keeps it with probability P/(kRouletteShare P₀)
+// at kRouletteShare P₀. Both keep the expected power at every collision, so
 // the estimates are unchanged in expectation; every photon contributes
 // more flights, each of less power: on the smoke cube (albedo 0.9) the
 // radiance cache's error at 8·10⁵ photons fell from 2.56 % to 2.02 %
@@ -144,6 +143,12 @@ void trace_photon(const Scene& scene, const SpectralNode& node, const SpectralLe
   Ray ray = l.ray;
   bool scattered = l.scattered;
   double power = l.power;
+  auto deposit = [&](const Vec3& x, double p, int surface) {
+    record.deposits.push_back(
+        SurfaceDeposit{{static_cast<float>(x.x), static_cast<float>(x.y), static_cast<float>(x.z)},
+                       static_cast<float>(p),
+                       static_cast<std::int32_t>(surface)});
+  };
   for (int bounce = 0; bounce < settings.max_scatterings; ++bounce) {
     SurfaceHit hit;
     const bool on_surface =
@@ -164,12 +169,6 @@ void trace_photon(const Scene& scene, const SpectralNode& node, const SpectralLe
       }
       if (end > 0.0) record.flights.push_back(flight_of(ray, end, power));
     }
-    auto deposit = [&](const Vec3& x, double p, int surface) {
-      record.deposits.push_back(SurfaceDeposit{
-          {static_cast<float>(x.x), static_cast<float>(x.y), static_cast<float>(x.z)},
-          static_cast<float>(p),
-          static_cast<std::int32_t>(surface)});
-    };
     // A sky photon's first collision takes its power from the straight line
     // to the surface beyond, which the surface's own radiance counts as
     // arriving.

@@ -66,8 +66,9 @@ std::vector<double> move_to_nodes(const NodeLattice& lattice, const KernelEstima
           rows[a][a] = 1.0;
           continue;
         }
+        // The two centroids' offsets plus the nodes' own distance, 1 or 2.
+        const double step = (to[a] != slot ? 1.0 : 0.0) + (from[a] != slot ? 1.0 : 0.0);
         for (int b = 0; b < 3; ++b) {
-          const double step = (to[a] != slot ? 1.0 : 0.0) + (from[a] != slot ? 1.0 : 0.0);
           rows[a][b] =
               estimates.shift[to[a]][b] - estimates.shift[from[a]][b] + (b == a ? step : 0.0);
         }

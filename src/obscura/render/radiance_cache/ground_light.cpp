@@ -29,6 +29,12 @@ GroundLight::GroundLight(const Scene& scene, const std::vector<SurfaceDeposit>& 
   }
 }
 
+bool GroundLight::has_ground(const Scene& scene) {
+  for (const auto& s : scene.surfaces)
+    if (dynamic_cast<const GroundPlane*>(s.get())) return true;
+  return false;
+}
+
 double GroundLight::irradiance(const Vec3& p) const {
   if (nodes_.empty()) return 0.0;
   const double u = (p.x - x0_) / cell_m_, v = (p.y - y0_) / cell_m_;

@@ -33,6 +33,9 @@ class GroundLight {
   GroundLight(const Scene& scene, const std::vector<SurfaceDeposit>& deposits, const Vec3& centre,
               double half_width_m);
 
+  // Whether `scene` has ground such a map covers (a GroundPlane).
+  static bool has_ground(const Scene& scene);
+
   // ΔE at ground point p (0 outside the square or without a map), W m⁻² µm⁻¹.
   double irradiance(const Vec3& p) const;
   // Whether surface `surface` of the scene is ground the map covers.

@@ -172,43 +172,42 @@ void RadianceCache::compute_sun(const Scene& scene, const std::vector<SpectralNo
   // then on or just under it (the ground beneath a cloud's lowest nodes),
   // and its values serve the cells above.
   const double near_m = std::sqrt(3.0) * lattice_.spacing_m();
-  // Adds `weight` τ_sun from lattice point `at` to `tau`, per medium sample.
-  const auto add_depth = [&](const Vec3& at, double weight, std::vector<double>& tau) {
-    std::vector<double> depth(tau.size(), 0.0);
+  // τ_sun per medium sample from lattice point `at`, added to `tau`.
+  const auto add_depth_from = [&](const Vec3& at, double* tau) {
     const Ray from{lattice_.origin() + lattice_.rotation() * (at * lattice_.spacing_m()), to_sun};
-    scene.medium->add_optical_depth(from, 0.0, std::numeric_limits<double>::infinity(),
-                                    depth.data());
-    for (std::size_t k = 0; k < tau.size(); ++k) tau[k] += weight * depth[k];
+    scene.medium->add_optical_depth(from, 0.0, std::numeric_limits<double>::infinity(), tau);
   };
-  for_blocks_shared(*processes_, lattice_.block_count(), scene.settings.threads, sun,
-                    per_slot * NodeLattice::kBlockNodes, [&](std::size_t block) {
-                      std::vector<double> tau(static_cast<std::size_t>(spectral_count_));
-                      for (std::size_t slot = block * NodeLattice::kBlockNodes;
-                           slot < (block + 1) * NodeLattice::kBlockNodes; ++slot) {
-                        if (!lattice_.slot_inside(slot)) continue;
-                        const Ray ray{lattice_.slot_position(slot), to_sun};
-                        SurfaceHit hit;
-                        const bool shaded =
-                            intersect_surfaces(scene.surfaces, ray, near_m,
-                                               std::numeric_limits<double>::infinity(), hit);
-                        std::fill(tau.begin(), tau.end(), 0.0);
-                        if (sun_depths_ == SunDepths::kHere) {
-                          const Vec3 node = lattice_.to_lattice(ray.origin);
-                          Vec3 face;
-                          if (volume_.has_medium() && rim_face(volume_.domain(), node, face)) {
-                            // 2 τ(face) − τ(inner neighbour) (lattice_view.h).
-                            add_depth(face, 2.0, tau);
-                            add_depth(face * 2.0 - node, -1.0, tau);
-                          } else {
-                            add_depth(node, 1.0, tau);
-                          }
-                        }
-                        float* out = sun.data() + slot * per_slot;
-                        for (int k = 0; k < spectral_count_; ++k)
-                          out[k] = static_cast<float>(tau[k]);
-                        out[spectral_count_] = shaded ? 0.0f : 1.0f;
-                      }
-                    });
+  for_blocks_shared(
+      *processes_, lattice_.block_count(), scene.settings.threads, sun,
+      per_slot * NodeLattice::kBlockNodes, [&](std::size_t block) {
+        std::vector<double> tau(static_cast<std::size_t>(spectral_count_)), inner(tau.size());
+        for (std::size_t slot = block * NodeLattice::kBlockNodes;
+             slot < (block + 1) * NodeLattice::kBlockNodes; ++slot) {
+          if (!lattice_.slot_inside(slot)) continue;
+          const Ray ray{lattice_.slot_position(slot), to_sun};
+          SurfaceHit hit;
+          const bool shaded = intersect_surfaces(scene.surfaces, ray, near_m,
+                                                 std::numeric_limits<double>::infinity(), hit);
+          std::fill(tau.begin(), tau.end(), 0.0);
+          if (sun_depths_ == SunDepths::kHere) {
+            const Vec3 node = lattice_.to_lattice(ray.origin);
+            Vec3 face;
+            if (volume_.has_medium() && rim_face(volume_.domain(), node, face)) {
+              // 2 τ(face) − τ(inner neighbour) (lattice_view.h).
+              std::fill(inner.begin(), inner.end(), 0.0);
+              add_depth_from(face, tau.data());
+              add_depth_from(face * 2.0 - node, inner.data());
+              for (std::size_t k = 0; k < tau.size(); ++k) tau[k] = 2.0 * tau[k] - inner[k];
+            } else {
+              scene.medium->add_optical_depth(ray, 0.0, std::numeric_limits<double>::infinity(),
+                                              tau.data());
+            }
+          }
+          float* out = sun.data() + slot * per_slot;
+          for (int k = 0; k < spectral_count_; ++k) out[k] = static_cast<float>(tau[k]);
+          out[spectral_count_] = shaded ? 0.0f : 1.0f;
+        }
+      });
   // Into every spectral node's records, τ_sun at its wavelength.
   parallel_for(lattice_.block_count(), scene.settings.threads, [&](std::size_t block) {
     std::vector<double> tau(static_cast<std::size_t>(spectral_count_));
@@ -350,10 +349,7 @@ void RadianceCache::splat(const Scene& scene, const SpectralNode& node, int inde
   tracing.flights = splats_flights(settings);
   tracing.absorb_by_weight = true;
   // The cloud's light on flat ground (ground_light.h).
-  bool has_ground = false;
-  for (const auto& surface : scene.surfaces)
-    has_ground = has_ground || dynamic_cast<const GroundPlane*>(surface.get()) != nullptr;
-  tracing.surface_deposits = has_ground && !lattice_.periodic();
+  tracing.surface_deposits = GroundLight::has_ground(scene) && !lattice_.periodic();
   // One block of 2^40 photon streams per spectral node, above the pixels'.
   const std::uint64_t base = (static_cast<std::uint64_t>(index) + 1) << 40;
   TracedPhotons traced = trace_photons(scene, node, base, tracing);
