@@ -5,10 +5,14 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <memory>
+#include <new>
 #include <type_traits>
 #include <utility>
 
+#include "obscura/core/bbox.h"
 #include "obscura/core/check.h"
+#include "obscura/core/mat3.h"
 #include "obscura/core/parallel.h"
 #include "obscura/core/shared_ranges.h"
 #include "obscura/medium/lattice_walker.h"
@@ -36,9 +40,13 @@ int slab_axis(const NodeLattice& lattice) {
   return axis;
 }
 
-// Three-point Gauss–Legendre on [0, 1].
+// Gauss–Legendre on [0, 1]: three points where σs varies over a cell (the
+// hat times σs is of degree 6 along a line), two where it is constant (the
+// hat alone is a cubic, which two points integrate exactly).
 constexpr double kGaussT[3] = {0.11270166537925831, 0.5, 0.88729833462074169};
 constexpr double kGaussW[3] = {5.0 / 18.0, 8.0 / 18.0, 5.0 / 18.0};
+constexpr double kGauss2T[2] = {0.21132486540518711, 0.78867513459481289};
+constexpr double kGauss2W[2] = {0.5, 0.5};
 
 // A flight in lattice coordinates, clipped to where the records hold medium.
 struct LatticeFlight {
@@ -46,15 +54,33 @@ struct LatticeFlight {
   double t0 = 0.0, t1 = 0.0;
 };
 
-bool to_lattice(const LatticeVolume& volume, const PhotonFlight& f, LatticeFlight& out) {
-  const NodeLattice& lattice = volume.lattice();
-  out.origin = lattice.to_lattice(f.origin());
-  out.direction = lattice.to_lattice_direction(f.dir());
-  out.t0 = 0.0;
-  out.t1 = f.length_m;
-  return volume.domain().intersect(Ray{out.origin, out.direction}, out.t0, out.t1) &&
-         out.t1 > out.t0;
-}
+// World flights into lattice coordinates (NodeLattice::to_lattice, with the
+// spacing folded into the rotation: no division per flight), clipped to the
+// volume's domain.
+class FlightToLattice {
+ public:
+  explicit FlightToLattice(const LatticeVolume& volume)
+      : origin_(volume.lattice().origin()), domain_(volume.domain()) {
+    const Mat3 r = volume.lattice().rotation().transposed();
+    const double inv_h = 1.0 / volume.lattice().spacing_m();
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) m_.m[i][j] = r.m[i][j] * inv_h;
+  }
+
+  // False if nothing of the flight is in the domain.
+  bool operator()(const PhotonFlight& f, LatticeFlight& out) const {
+    out.origin = m_ * (f.origin() - origin_);
+    out.direction = m_ * f.dir();
+    out.t0 = 0.0;
+    out.t1 = f.length_m;
+    return domain_.intersect(Ray{out.origin, out.direction}, out.t0, out.t1) && out.t1 > out.t0;
+  }
+
+ private:
+  Mat3 m_;
+  Vec3 origin_;
+  BBox3 domain_;
+};
 
 // Clips the flight to lattice coordinate `axis` in [lo, hi]; false if
 // nothing is left.
@@ -112,6 +138,56 @@ class CellCorners {
   std::array<std::size_t, 8> first_{};
 };
 
+// One slab's sums while its flights are splatted: floats, kept for the
+// slab's own blocks only (one block layer across the slabs' axis) and
+// aligned so that a node's harmonics at degree 3 fill one cache line. The
+// flush of a node is the splat's commonest memory access; the lattice's
+// whole double sums would spill a core's cache. Added to the double sums,
+// node by node, when the slab is done.
+class SlabSums {
+ public:
+  SlabSums(const NodeLattice& lattice, int axis, int slab, std::size_t per_slot)
+      : per_slot_(per_slot), local_block_(lattice.block_count(), -1) {
+    static_assert(kSlabLayers == NodeLattice::kBlock);
+    for (std::size_t b = 0; b < lattice.block_count(); ++b)
+      if (lattice.block_first_node(b)[axis] == slab * kSlabLayers) {
+        local_block_[b] = static_cast<std::int32_t>(blocks_.size());
+        blocks_.push_back(b);
+      }
+    const std::size_t floats = blocks_.size() * NodeLattice::kBlockNodes * per_slot_;
+    data_.reset(static_cast<float*>(
+        ::operator new[](std::max<std::size_t>(floats, 1) * sizeof(float), kAlignment)));
+    std::fill(data_.get(), data_.get() + floats, 0.0f);
+  }
+
+  // The sums of `slot`, a node of the slab's layers.
+  float* at(std::size_t slot) {
+    const std::int32_t b = local_block_[slot / NodeLattice::kBlockNodes];
+    return data_.get() + (static_cast<std::size_t>(b) * NodeLattice::kBlockNodes +
+                          slot % NodeLattice::kBlockNodes) *
+                             per_slot_;
+  }
+
+  // Adds them to the lattice's sums (per slot per_slot values).
+  void add_to(std::vector<double>& sum) const {
+    for (std::size_t i = 0; i < blocks_.size(); ++i) {
+      const float* from = data_.get() + i * NodeLattice::kBlockNodes * per_slot_;
+      double* to = sum.data() + blocks_[i] * NodeLattice::kBlockNodes * per_slot_;
+      for (std::size_t k = 0; k < NodeLattice::kBlockNodes * per_slot_; ++k) to[k] += from[k];
+    }
+  }
+
+ private:
+  static constexpr std::align_val_t kAlignment{64};
+  struct Free {
+    void operator()(float* p) const { ::operator delete[](p, kAlignment); }
+  };
+  std::size_t per_slot_;
+  std::vector<std::int32_t> local_block_;  // per lattice block: its index here, or −1
+  std::vector<std::size_t> blocks_;        // the slab's blocks, in lattice order
+  std::unique_ptr<float[], Free> data_;
+};
+
 // The sums of each process's slabs' nodes, shared (core/shared_ranges.h):
 // afterwards every process holds every slab's sums.
 void share_slabs(const NodeLattice& lattice, int axis, int slabs, int count,
@@ -141,12 +217,12 @@ void share_slabs(const NodeLattice& lattice, int axis, int slabs, int count,
 template <int Count, int Peaks>
 void splat_flight(const PhotonFlight& flight, const LatticeFlight& f,
                   const std::array<int, 3>& cell_lo, const std::array<int, 3>& cell_hi, int axis,
-                  int n0, int n1, const float* records, std::size_t stride, double inv_volume,
-                  int sh_degree, const std::vector<Vec3>& peak_views, CellCorners& cell_corners,
-                  std::vector<double>& sum) {
-  constexpr std::size_t per_slot = Count + Peaks;
+                  int n0, int n1, const float* scattering, double inv_volume, int sh_degree,
+                  const std::vector<Vec3>& peak_views, CellCorners& cell_corners, SlabSums& sums) {
   std::array<double, kMaxShCoefficients> y;
   spherical_harmonics(flight.dir(), y);
+  alignas(64) std::array<float, Count> y_float;
+  for (int l = 0; l < Count; ++l) y_float[l] = static_cast<float>(y[l]);
   LatticeWalker walker(f.origin, f.direction, f.t0, f.t1, 1.0, cell_lo, cell_hi);
   // The forward peak towards each sensor's direction, at the flight's
   // cosine with it (only g changes along the flight).
@@ -166,31 +242,63 @@ void splat_flight(const PhotonFlight& flight, const LatticeFlight& f,
   auto flush = [&](int c) {
     const int n = held_cell[axis] + (c >> axis & 1);
     if (held_slot[c] == NodeLattice::kNoSlot || n < n0 || n >= n1 || held[c] == 0.0) return;
-    double* acc = sum.data() + held_slot[c] * per_slot;
-    const double wc = scale * held[c];
-    for (int l = 0; l < Count; ++l) acc[l] += wc * y[l];
-    for (int v = 0; v < Peaks; ++v) acc[Count + v] += scale * held_peak[c][v];
+    float* acc = sums.at(held_slot[c]);
+    const auto wc = static_cast<float>(scale * held[c]);
+    for (int l = 0; l < Count; ++l) acc[l] += wc * y_float[l];
+    for (int v = 0; v < Peaks; ++v) acc[Count + v] += static_cast<float>(scale * held_peak[c][v]);
   };
   std::array<std::size_t, 8> slot;
   std::array<int, 3> cell;
+  // σs (and σs g, for the forward peak's g) at the corners (zero in blocks
+  // the lattice does not hold); a step along one axis keeps the shared
+  // face's four.
+  std::array<double, 8> corner_sigma_s{}, corner_sigma_s_g{};
+  auto load_corner = [&](int c) {
+    if (slot[c] == NodeLattice::kNoSlot) {
+      corner_sigma_s[c] = corner_sigma_s_g[c] = 0.0;
+      return;
+    }
+    const float* r = scattering + slot[c] * 2;
+    corner_sigma_s[c] = r[0];
+    if constexpr (Peaks > 0) corner_sigma_s_g[c] = r[1];
+  };
   double ta, tb;
   while (walker.next(cell, ta, tb)) {
     if (!(tb > ta) || cell[axis] + 1 < n0 || cell[axis] >= n1) continue;
+    // One step along one axis (from the side `side` of the held cell), or a
+    // jump: the held corners on the shared face become the new cell's.
+    int step_axis = -1, steps = 0;
+    for (int a = 0; a < 3; ++a)
+      if (cell[a] != held_cell[a]) {
+        step_axis = a;
+        steps += std::abs(cell[a] - held_cell[a]);
+      }
+    const int side = steps == 1 && cell[step_axis] > held_cell[step_axis] ? 1 : 0;
     cell_corners(cell, slot);
-    // σs (and σs g, for the forward peak's g) at the corners (zero in
-    // blocks the lattice does not hold), then ∫ hat_c σs dt over the cell's
-    // piece for each corner c.
-    std::array<double, 8> corner_sigma_s{}, corner_sigma_s_g{};
-    for (int c = 0; c < 8; ++c) {
-      if (slot[c] == NodeLattice::kNoSlot) continue;
-      const float* r = records + slot[c] * stride;
-      corner_sigma_s[c] = r[record::kSigmaS];
-      if constexpr (Peaks > 0) corner_sigma_s_g[c] = r[record::kSigmaSG];
+    if (steps == 1) {
+      const int bit = 1 << step_axis;
+      for (int c = 0; c < 8; ++c)
+        if ((c >> step_axis & 1) == side) {
+          corner_sigma_s[c ^ bit] = corner_sigma_s[c];
+          if constexpr (Peaks > 0) corner_sigma_s_g[c ^ bit] = corner_sigma_s_g[c];
+        }
+      for (int c = 0; c < 8; ++c)
+        if ((c >> step_axis & 1) == side) load_corner(c);
+    } else {
+      for (int c = 0; c < 8; ++c) load_corner(c);
     }
+    bool uniform = true;
+    for (int c = 1; c < 8; ++c)
+      uniform = uniform && corner_sigma_s[c] == corner_sigma_s[0] &&
+                (Peaks == 0 || corner_sigma_s_g[c] == corner_sigma_s_g[0]);
+    const int points = uniform ? 2 : 3;
+    const double* rule_t = uniform ? kGauss2T : kGaussT;
+    const double* rule_w = uniform ? kGauss2W : kGaussW;
+    // ∫ hat_c σs dt over the cell's piece for each corner c.
     std::array<double, 8> weight{};
     std::array<std::array<double, kMaxPeakViews>, 8> peak_weight{};
-    for (int q = 0; q < 3; ++q) {
-      const double t = ta + (tb - ta) * kGaussT[q];
+    for (int q = 0; q < points; ++q) {
+      const double t = ta + (tb - ta) * rule_t[q];
       double fx[3];
       for (int a = 0; a < 3; ++a)
         fx[a] = std::clamp(f.origin[a] + t * f.direction[a] - cell[a], 0.0, 1.0);
@@ -203,14 +311,20 @@ void splat_flight(const PhotonFlight& flight, const LatticeFlight& f,
         w[2 * k] = (1 - fx[0]) * yz[k];
         w[2 * k + 1] = fx[0] * yz[k];
       }
-      double sigma_s = 0.0;
-      for (int c = 0; c < 8; ++c) sigma_s += w[c] * corner_sigma_s[c];
-      const double gw = kGaussW[q] * (tb - ta) * sigma_s;
+      double sigma_s = corner_sigma_s[0];
+      if (!uniform) {
+        sigma_s = 0.0;
+        for (int c = 0; c < 8; ++c) sigma_s += w[c] * corner_sigma_s[c];
+      }
+      const double gw = rule_w[q] * (tb - ta) * sigma_s;
       for (int c = 0; c < 8; ++c) weight[c] += gw * w[c];
       if constexpr (Peaks > 0) {
         if (!(sigma_s > 0.0)) continue;
-        double sigma_s_g = 0.0;
-        for (int c = 0; c < 8; ++c) sigma_s_g += w[c] * corner_sigma_s_g[c];
+        double sigma_s_g = corner_sigma_s_g[0];
+        if (!uniform) {
+          sigma_s_g = 0.0;
+          for (int c = 0; c < 8; ++c) sigma_s_g += w[c] * corner_sigma_s_g[c];
+        }
         const double g = cache_clamped_g(sigma_s_g / sigma_s);
         for (int v = 0; v < Peaks; ++v) {
           const double gq = gw * beyond[v](g);
@@ -218,16 +332,9 @@ void splat_flight(const PhotonFlight& flight, const LatticeFlight& f,
         }
       }
     }
-    // One step along one axis: the held corners on the shared face move to
-    // the opposite side of the new cell; the others are done.
-    int step_axis = -1, steps = 0;
-    for (int a = 0; a < 3; ++a)
-      if (cell[a] != held_cell[a]) {
-        step_axis = a;
-        steps += std::abs(cell[a] - held_cell[a]);
-      }
+    // The held corners on the shared face carry their sums into the new
+    // cell's; the others are done.
     if (steps == 1) {
-      const int side = cell[step_axis] > held_cell[step_axis] ? 1 : 0;
       for (int c = 0; c < 8; ++c)
         if ((c >> step_axis & 1) == side) {
           weight[c ^ (1 << step_axis)] += held[c];
@@ -292,26 +399,55 @@ void splat_flights(const LatticeVolume& volume, int node, const std::vector<Phot
   const int slabs = (dims[axis] + kSlabLayers - 1) / kSlabLayers;
   const double h = lattice.spacing_m();
   const double inv_volume = 1.0 / (h * h * h);  // the tent kernel of one spacing, per m³
-  const float* records = volume.records(node);
-  const std::size_t stride = static_cast<std::size_t>(volume.stride());
+  // σs and σs g per slot, out of the records (whose other channels and the
+  // cache's light would take a cache line per corner read).
+  std::vector<float> scattering(2 * lattice.slot_count());
+  {
+    const float* records = volume.records(node);
+    const auto stride = static_cast<std::size_t>(volume.stride());
+    for (std::size_t slot = 0; slot < lattice.slot_count(); ++slot) {
+      scattering[2 * slot] = records[slot * stride + record::kSigmaS];
+      scattering[2 * slot + 1] = records[slot * stride + record::kSigmaSG];
+    }
+  }
 
   // This process's slabs: s ≡ rank (mod ranks).
   const auto rank = static_cast<std::size_t>(processes.rank()),
              ranks = static_cast<std::size_t>(processes.size());
   const auto mine = [&](int s) { return static_cast<std::size_t>(s) % ranks == rank; };
 
-  // Which flights reach which slab: the node layers of the cells it crosses.
-  std::vector<std::vector<std::uint32_t>> reach(static_cast<std::size_t>(slabs));
+  const FlightToLattice to_lattice(volume);
+  // Which flights reach which slab: the node layers of the cells it crosses,
+  // found per fixed chunk of flights in parallel and joined in chunk order
+  // (so in stored order, whatever the thread count).
   OBSCURA_CHECK(flights.size() < std::numeric_limits<std::uint32_t>::max());
-  for (std::size_t i = 0; i < flights.size(); ++i) {
-    LatticeFlight f;
-    if (!to_lattice(volume, flights[i], f)) continue;
-    const double a = f.origin[axis] + f.t0 * f.direction[axis],
-                 b = f.origin[axis] + f.t1 * f.direction[axis];
-    const int lo = std::clamp(static_cast<int>(std::floor(std::min(a, b))), 0, dims[axis] - 2);
-    const int hi = std::clamp(static_cast<int>(std::floor(std::max(a, b))), 0, dims[axis] - 2) + 1;
-    for (int s = lo / kSlabLayers; s <= std::min(hi / kSlabLayers, slabs - 1); ++s)
-      if (mine(s)) reach[static_cast<std::size_t>(s)].push_back(static_cast<std::uint32_t>(i));
+  constexpr std::size_t kChunk = 1 << 16;
+  const std::size_t chunks = (flights.size() + kChunk - 1) / kChunk;
+  using Reach = std::vector<std::vector<std::uint32_t>>;  // flight indices per slab
+  std::vector<Reach> chunk_reach(chunks, Reach(static_cast<std::size_t>(slabs)));
+  parallel_for(chunks, threads, [&](std::size_t k) {
+    Reach& r = chunk_reach[k];
+    for (std::size_t i = k * kChunk; i < std::min(flights.size(), (k + 1) * kChunk); ++i) {
+      LatticeFlight f;
+      if (!to_lattice(flights[i], f)) continue;
+      const double a = f.origin[axis] + f.t0 * f.direction[axis],
+                   b = f.origin[axis] + f.t1 * f.direction[axis];
+      const int lo = std::clamp(static_cast<int>(std::floor(std::min(a, b))), 0, dims[axis] - 2);
+      const int hi =
+          std::clamp(static_cast<int>(std::floor(std::max(a, b))), 0, dims[axis] - 2) + 1;
+      for (int s = lo / kSlabLayers; s <= std::min(hi / kSlabLayers, slabs - 1); ++s)
+        if (mine(s)) r[static_cast<std::size_t>(s)].push_back(static_cast<std::uint32_t>(i));
+    }
+  });
+  Reach reach(static_cast<std::size_t>(slabs));
+  for (std::size_t s = 0; s < reach.size(); ++s) {
+    std::size_t n = 0;
+    for (const Reach& r : chunk_reach) n += r[s].size();
+    reach[s].reserve(n);
+    for (Reach& r : chunk_reach) {
+      reach[s].insert(reach[s].end(), r[s].begin(), r[s].end());
+      std::vector<std::uint32_t>().swap(r[s]);
+    }
   }
 
   const std::size_t own = static_cast<std::size_t>(slabs) / ranks +
@@ -324,9 +460,10 @@ void splat_flights(const LatticeVolume& volume, int node, const std::vector<Phot
       // Node layers n0 … n1 − 1 along the slabs' axis.
       const int n0 = static_cast<int>(s) * kSlabLayers, n1 = std::min(n0 + kSlabLayers, dims[axis]);
       CellCorners cell_corners(lattice);
+      SlabSums sums(lattice, axis, static_cast<int>(s), per_slot);
       for (const std::uint32_t i : reach[s]) {
         LatticeFlight f;
-        to_lattice(volume, flights[i], f);
+        to_lattice(flights[i], f);
         // The part of it in the cells whose corners reach the slab's node
         // layers, cells n0 − 1 … n1 − 1 (the walker must start inside its range).
         const int c0 = std::max(n0 - 1, 0), c1 = std::min(n1 - 1, dims[axis] - 2);
@@ -334,9 +471,11 @@ void splat_flights(const LatticeVolume& volume, int node, const std::vector<Phot
         std::array<int, 3> cell_lo{0, 0, 0}, cell_hi{dims[0] - 2, dims[1] - 2, dims[2] - 2};
         cell_lo[axis] = c0;
         cell_hi[axis] = c1;
-        splat_flight<kCount, kPeaks>(flights[i], f, cell_lo, cell_hi, axis, n0, n1, records, stride,
-                                     inv_volume, sh_degree, peak_views, cell_corners, sum);
+        splat_flight<kCount, kPeaks>(flights[i], f, cell_lo, cell_hi, axis, n0, n1,
+                                     scattering.data(), inv_volume, sh_degree, peak_views,
+                                     cell_corners, sums);
       }
+      sums.add_to(sum);  // the slab's own nodes: no other task writes them
     });
   });
   if (ranks > 1) share_slabs(lattice, axis, slabs, static_cast<int>(per_slot), processes, sum);
