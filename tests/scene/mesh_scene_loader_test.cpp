@@ -92,6 +92,7 @@ TEST_F(SceneLoaderMesh, OneSurfacePerPartWithItsMaterial) {
   EXPECT_EQ(s.surfaces[1]->material().emissivity_table.size(), 2u);
   EXPECT_TRUE(s.surfaces[0]->is_target());
   EXPECT_TRUE(s.surfaces[1]->is_target());
+  EXPECT_FALSE(s.surfaces[0]->is_terrain());  // a vehicle is not ground
   EXPECT_EQ(s.input_files.back(), dir_ / "vehicle.obj");
 }
 
@@ -179,6 +180,7 @@ TEST_F(SceneLoaderMesh, Heightfield) {
   ASSERT_EQ(s.surfaces.size(), 1u);
   EXPECT_EQ(s.surfaces[0]->name(), "terrain");
   EXPECT_EQ(s.surfaces[0]->material().emissivity, 0.95);
+  EXPECT_TRUE(s.surfaces[0]->is_terrain());  // the radiance cache's ground light covers it
   // Straight down onto sample (row 1, column 2) = (120, 210), height 2.
   SurfaceHit hit;
   ASSERT_TRUE(s.surfaces[0]->intersect(Ray{{120, 210, 50}, {0, 0, -1}}, 0, kInf, hit));

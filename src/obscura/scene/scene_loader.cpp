@@ -143,8 +143,10 @@ void parse_heightfield(JsonObject& o, const std::string& name, const std::filesy
   const bool target = o.boolean_or("target", false);
   o.finish();
   const Heightfield h = read_heightfield_csv(file);
-  scene.surfaces.push_back(
-      mesh_surface(o, name, m, heightfield_mesh(h, origin[0], origin[1], spacing, name), target));
+  std::unique_ptr<Surface> s =
+      mesh_surface(o, name, m, heightfield_mesh(h, origin[0], origin[1], spacing, name), target);
+  s->set_terrain(true);
+  scene.surfaces.push_back(std::move(s));
 }
 
 // One entry of "/surfaces": one Surface, or one per part of a mesh.

@@ -51,18 +51,27 @@ class Surface {
   // Part of the target: its pixels form the target mask of screening metrics.
   bool is_target() const { return target_; }
   void set_target(bool target) { target_ = target; }
+  // Ground: the graph of a height z(x, y), at most one point of it above
+  // each (x, y) (a ground plane, a heightfield), which the radiance cache's
+  // map of the cloud's light on the ground covers
+  // (render/radiance_cache/ground_light.h).
+  bool is_terrain() const { return terrain_; }
+  void set_terrain(bool terrain) { terrain_ = terrain; }
 
  private:
   std::string name_;
   SurfaceMaterial material_;
   bool target_ = false;
+  bool terrain_ = false;
 };
 
 // The plane z = height_m, seen from either side.
 class GroundPlane final : public Surface {
  public:
   GroundPlane(std::string name, SurfaceMaterial m, double height_m)
-      : Surface(std::move(name), m), height_m_(height_m) {}
+      : Surface(std::move(name), m), height_m_(height_m) {
+    set_terrain(true);
+  }
   bool intersect(const Ray& ray, double t_min, double t_max, SurfaceHit& hit) const override;
 
  private:

@@ -2,7 +2,6 @@
 
 #include <cmath>
 
-#include "obscura/scene/surface.h"
 
 namespace obscura {
 
@@ -13,7 +12,7 @@ GroundLight::GroundLight(const Scene& scene, const std::vector<SurfaceDeposit>& 
       cell_m_(2.0 * half_width_m / kCells),
       nodes_(static_cast<std::size_t>(kCells + 1) * (kCells + 1), 0.0) {
   for (const auto& s : scene.surfaces)
-    ground_.push_back(dynamic_cast<const GroundPlane*>(s.get()) != nullptr);
+    ground_.push_back(s->is_terrain());
   const double area = cell_m_ * cell_m_;
   for (const SurfaceDeposit& d : deposits) {
     if (!covers(d.surface)) continue;
@@ -31,7 +30,7 @@ GroundLight::GroundLight(const Scene& scene, const std::vector<SurfaceDeposit>& 
 
 bool GroundLight::has_ground(const Scene& scene) {
   for (const auto& s : scene.surfaces)
-    if (dynamic_cast<const GroundPlane*>(s.get())) return true;
+    if (s->is_terrain()) return true;
   return false;
 }
 

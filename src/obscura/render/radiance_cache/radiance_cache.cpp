@@ -348,7 +348,7 @@ void RadianceCache::splat(const Scene& scene, const SpectralNode& node, int inde
   // the lattice's own hat (flight_splat.h), else the collisions.
   tracing.flights = splats_flights(settings);
   tracing.absorb_by_weight = true;
-  // The cloud's light on flat ground (ground_light.h).
+  // The cloud's light on the ground (ground_light.h).
   tracing.surface_deposits = GroundLight::has_ground(scene) && !lattice_.periodic();
   // One block of 2^40 photon streams per spectral node, above the pixels'.
   const std::uint64_t base = (static_cast<std::uint64_t>(index) + 1) << 40;
@@ -448,8 +448,10 @@ void add_ground_light(const Scene& scene, const RadianceCache& cache, const Came
   if (!camera.on_surface || !cache.ground(0).covers(camera.hit.surface)) return;
   const SurfaceMaterial& m = scene.surfaces[camera.hit.surface]->material();
   const Vec3 p = camera.ray.at(camera.hit.t);
+  // Per horizontal area on the map; a sloped facet spreads it over 1/n_z more.
+  const double n_z = std::abs(camera.hit.normal.z);
   for (std::size_t j = 0; j < nodes.size(); ++j)
-    behind[j] += m.reflectance_at(nodes.nodes()[j].wavelength_um) * std::numbers::inv_pi *
+    behind[j] += m.reflectance_at(nodes.nodes()[j].wavelength_um) * std::numbers::inv_pi * n_z *
                  cache.ground(record[j]).irradiance(p);
 }
 

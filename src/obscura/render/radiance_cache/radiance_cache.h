@@ -77,8 +77,8 @@ class RadianceCache {
   // then τ_sun, V_sun and the sh_count() coefficients c_lm of the incident
   // radiance (W m⁻² sr⁻¹ µm⁻¹ × sr), from record::kTauSun on.
   const LatticeVolume& volume() const { return volume_; }
-  // The cloud's light on flat ground at spectral node `node` (its index in
-  // the order given; ground_light.h): empty without GroundPlane surfaces.
+  // The cloud's light on the ground at spectral node `node` (its index in
+  // the order given; ground_light.h): empty without terrain surfaces.
   const GroundLight& ground(int node) const { return ground_[static_cast<std::size_t>(node)]; }
 
   // What building it cost.
