@@ -101,9 +101,9 @@ TEST(RadianceCacheIntegrator, AHeightfieldGroundGetsTheCloudsLight) {
     for (std::size_t row = 0; row < 3; ++row)
       for (std::size_t column = 0; column < 3; ++column)
         h.heights.push_back(0.02 * (-1000.0 + 1000.0 * static_cast<double>(row) + 12.0));
-    auto field = std::make_unique<MeshSurface>(
-        "terrain", scene.surfaces[0]->material(),
-        heightfield_mesh(h, -1000.0, -1000.0, 1000.0, "terrain"));
+    auto field =
+        std::make_unique<MeshSurface>("terrain", scene.surfaces[0]->material(),
+                                      heightfield_mesh(h, -1000.0, -1000.0, 1000.0, "terrain"));
     field->set_terrain(terrain);
     scene.surfaces[0] = std::move(field);
     return scene;

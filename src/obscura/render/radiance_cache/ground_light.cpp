@@ -2,7 +2,6 @@
 
 #include <cmath>
 
-
 namespace obscura {
 
 GroundLight::GroundLight(const Scene& scene, const std::vector<SurfaceDeposit>& deposits,
@@ -11,8 +10,7 @@ GroundLight::GroundLight(const Scene& scene, const std::vector<SurfaceDeposit>& 
       y0_(centre.y - half_width_m),
       cell_m_(2.0 * half_width_m / kCells),
       nodes_(static_cast<std::size_t>(kCells + 1) * (kCells + 1), 0.0) {
-  for (const auto& s : scene.surfaces)
-    ground_.push_back(s->is_terrain());
+  for (const auto& s : scene.surfaces) ground_.push_back(s->is_terrain());
   const double area = cell_m_ * cell_m_;
   for (const SurfaceDeposit& d : deposits) {
     if (!covers(d.surface)) continue;
