@@ -423,7 +423,13 @@ void GridMedium::trace_majorants(const Ray& ray, double t_min, double t_max,
   const auto& bd = majorants_.block_dims();
   LatticeWalker blocks(o, dir, t_min, t_max, majorants_.block_size(), {0, 0, 0},
                        {bd[0] - 1, bd[1] - 1, bd[2] - 1});
-  std::vector<double> values(ns), least(ns);
+  // The pieces' values on the stack for up to kOnStack wavelengths (a
+  // photon's every flight walks here), on the heap beyond.
+  constexpr int kOnStack = 16;
+  std::array<double, 2 * kOnStack> on_stack;
+  std::vector<double> on_heap(ns > kOnStack ? 2 * static_cast<std::size_t>(ns) : 0);
+  double* const values = ns > kOnStack ? on_heap.data() : on_stack.data();
+  double* const least = values + ns;
   std::array<int, 3> b;
   double t0, t1;
   while (blocks.next(b, t0, t1)) {
@@ -432,7 +438,7 @@ void GridMedium::trace_majorants(const Ray& ray, double t_min, double t_max,
       values[s] = majorants_.majorant(b[0], b[1], b[2], s);
       least[s] = majorants_.minorant(b[0], b[1], b[2], s);
     }
-    if (!visit(MajorantSegment{t0, t1, values.data(), ns, least.data()})) return;
+    if (!visit(MajorantSegment{t0, t1, values, ns, least})) return;
   }
 }
 
