@@ -15,7 +15,7 @@
 //                    [--size 256] [--methods path-tracer,photonmap,radiance-cache]
 //                    [--reference-file F] [--sh-degree D] [--kernel R] [--voxel M]
 //                    [--photons N] [--steps 12] [--error-map F] [--cache-spp 4]
-//                    [--medium grid|box] [--seed 1]
+//                    [--medium grid|box] [--grid 32] [--seed 1]
 // --reference-file keeps the reference's block means in F (read back when F
 // exists and was made at the same size and spp); --sh-degree, --kernel and
 // --voxel set the radiance cache's settings, --photons its first effort
@@ -24,8 +24,8 @@
 // CSV. --seed: the methods' seed (1; the reference's is fixed). --cache-spp: the radiance cache's
 // samples per pixel (stratified: one sample at a pixel's centre is not the pixel's mean where an
 // edge crosses it, and the reference's is). The radiance cache's defaults here, 4 spp and SH degree
-// 3, are what reached 2 % (docs/performance.md). --medium: the cube as a 32³ grid (default) or a
-// box (the same medium). Nothing here is asserted.
+// 3, are what reached 2 % (docs/performance.md). --medium: the cube as a grid of --grid³ voxels
+// (default 32³) or a box (the same medium). Nothing here is asserted.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -45,14 +45,13 @@ using namespace obscura;
 
 namespace {
 
-// The cube as a box, or as a 32³ grid of the same constant values (a grid's
+// The cube as a box, or as an n³ grid of the same constant values (a grid's
 // clamped reconstruction is constant up to its faces, so the medium is the
 // same), which the radiance cache marches over its lattice records.
-Scene smoke_cube(int size, bool as_grid) {
+Scene smoke_cube(int size, bool as_grid, int n) {
   Scene scene;
   const std::vector<double> wavelengths{0.5, 0.6};
   if (as_grid) {
-    constexpr int n = 32;
     GridPlacement placement;
     placement.origin_m = {-1, -1, -1};
     placement.voxel_size_m = 2.0 / n;
@@ -158,7 +157,7 @@ constexpr const char* kUsage =
     "usage: bench_smoke_cube [--reference-spp 4096] [--target 0.02] [--threads N] [--size 256]\n"
     "         [--methods path-tracer,photonmap,radiance-cache] [--reference-file F]\n"
     "         [--sh-degree 3] [--kernel R] [--voxel M] [--photons 25000] [--steps 12]\n"
-    "         [--error-map F] [--cache-spp 4] [--medium grid|box] [--seed 1]\n";
+    "         [--error-map F] [--cache-spp 4] [--medium grid|box] [--grid 32] [--seed 1]\n";
 
 }  // namespace
 
@@ -166,7 +165,7 @@ int main(int argc, char** argv) {
   int reference_spp = 4096, threads = 0, size = 256, sh_degree = 3, kernel = -1;
   double target = 0.02, voxel_m = -1;
   long long cache_photons = 25000;
-  int max_steps = 12, cache_spp = 4;
+  int max_steps = 12, cache_spp = 4, grid_voxels = 32;
   std::uint64_t seed = 1;
   std::string medium_form = "grid";
   std::string methods = "path-tracer,photonmap,radiance-cache", reference_file, error_map;
@@ -202,6 +201,8 @@ int main(int argc, char** argv) {
       error_map = argv[i + 1];
     else if (a == "--medium")
       medium_form = argv[i + 1];
+    else if (a == "--grid")
+      grid_voxels = std::atoi(argv[i + 1]);
     else if (a == "--cache-spp")
       cache_spp = std::atoi(argv[i + 1]);
     else if (a == "--steps")
@@ -218,7 +219,11 @@ int main(int argc, char** argv) {
   const int cores = resolve_thread_count(threads);
   std::printf("smoke cube, %d² px, %d threads; reference: path tracer at %d spp\n", size, cores,
               reference_spp);
-  Scene scene = smoke_cube(size, medium_form == "grid");
+  if (grid_voxels < 1 || grid_voxels > 512) {
+    std::fprintf(stderr, "--grid: voxels per side must lie in [1, 512]\n");
+    return 2;
+  }
+  Scene scene = smoke_cube(size, medium_form == "grid", grid_voxels);
   scene.settings.threads = threads;
   scene.settings.method = RenderMethod::kPathTracer;
   scene.settings.samples_per_pixel = reference_spp;
