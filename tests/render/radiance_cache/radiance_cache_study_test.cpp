@@ -17,6 +17,19 @@
 namespace obscura {
 namespace {
 
+// Scene `rc` rendered at 4 samples per pixel (its method, the radiance
+// cache), against `reference`: the first band's mean error and systematic
+// relative RMSE (support/image_error.h).
+struct CacheErrors {
+  double mean = 0.0, rmse = 0.0;
+};
+CacheErrors cache_errors(Scene& rc, const SensorImage& reference) {
+  rc.settings.samples_per_pixel = 4;
+  const SensorImage cache = render_sensor(rc, rc.sensors[0]);
+  return {testing::mean_error(cache.bands[0], reference.bands[0]),
+          testing::systematic_rmse(cache.bands[0], reference.bands[0])};
+}
+
 TEST(RadianceCacheIntegrator, StudyScenesAgreeWithThePathTracer) {
   for (const StudyScene which : {StudyScene::kLwir, StudyScene::kVisible}) {
     const bool visible = which == StudyScene::kVisible;
@@ -70,12 +83,9 @@ TEST(RadianceCacheIntegrator, ANarrowSensorAgainstTheSunGetsTheForwardPeak) {
   const SensorImage reference = render_sensor(pt, pt.sensors[0]);
   for (const bool peaks : {true, false}) {
     Scene rc = against_the_sun(RenderMethod::kRadianceCache);
-    rc.settings.samples_per_pixel = 4;
     rc.settings.radiance_cache.photons_per_node = 4000000;
     rc.settings.radiance_cache.sensor_peaks = peaks;
-    const SensorImage cache = render_sensor(rc, rc.sensors[0]);
-    const double mean = testing::mean_error(cache.bands[0], reference.bands[0]),
-                 rmse = testing::systematic_rmse(cache.bands[0], reference.bands[0]);
+    const auto [mean, rmse] = cache_errors(rc, reference);
     if (peaks) {
       EXPECT_LT(std::abs(mean), 0.03);
       EXPECT_LT(rmse, 0.08);
@@ -113,10 +123,7 @@ TEST(RadianceCacheIntegrator, AHeightfieldGroundGetsTheCloudsLight) {
   const SensorImage reference = render_sensor(pt, pt.sensors[0]);
   for (const bool terrain : {true, false}) {
     Scene rc = over_terrain(RenderMethod::kRadianceCache, terrain);
-    rc.settings.samples_per_pixel = 4;
-    const SensorImage cache = render_sensor(rc, rc.sensors[0]);
-    const double mean = testing::mean_error(cache.bands[0], reference.bands[0]),
-                 rmse = testing::systematic_rmse(cache.bands[0], reference.bands[0]);
+    const auto [mean, rmse] = cache_errors(rc, reference);
     if (terrain) {
       EXPECT_LT(std::abs(mean), 0.02);
       EXPECT_LT(rmse, 0.035);
