@@ -17,7 +17,7 @@
 //                    [--photons N] [--steps 12] [--error-map F] [--cache-spp 4]
 //                    [--medium grid|box] [--grid 32] [--seed 1]
 // --reference-file keeps the reference's block means in F (read back when F
-// exists and was made at the same size and spp); --sh-degree, --kernel and
+// exists, which must then have been made at the same size and spp); --sh-degree, --kernel and
 // --voxel set the radiance cache's settings, --photons its first effort
 // (photons per node, doubled at each of at most --steps steps). --error-map
 // writes each step's blocks (reference mean and relative difference) to F as
@@ -121,15 +121,35 @@ double block_error(const Blocks& ref, const Blocks& b,
 
 // The reference's block means, kept between runs (plain text: size, spp,
 // block count, then the means and their standard errors).
+// Reads a reference kept by write_reference: false if `path` does not
+// exist; exits with a message if it holds another size or spp (rather than
+// rendering and overwriting it).
 bool read_reference(const std::string& path, int size, int spp, Blocks& out) {
   std::ifstream in(path);
+  if (!in) return false;
   int file_size = 0, file_spp = 0;
   std::size_t count = 0;
-  if (!(in >> file_size >> file_spp >> count) || file_size != size || file_spp != spp) return false;
+  if (!(in >> file_size >> file_spp >> count)) {
+    std::fprintf(stderr,
+                 "bench_smoke_cube: %s: not a reference file (size spp count, then blocks)\n",
+                 path.c_str());
+    std::exit(2);
+  }
+  if (file_size != size || file_spp != spp) {
+    std::fprintf(stderr,
+                 "bench_smoke_cube: %s holds a reference of %d² px at %d spp; give --size %d "
+                 "--reference-spp %d, or another file\n",
+                 path.c_str(), file_size, file_spp, file_size, file_spp);
+    std::exit(2);
+  }
   out.mean.resize(count);
   out.stderr_mean.resize(count);
   for (std::size_t k = 0; k < count; ++k)
-    if (!(in >> out.mean[k] >> out.stderr_mean[k])) return false;
+    if (!(in >> out.mean[k] >> out.stderr_mean[k])) {
+      std::fprintf(stderr, "bench_smoke_cube: %s: block %zu of %zu is missing\n", path.c_str(), k,
+                   count);
+      std::exit(2);
+    }
   return true;
 }
 
