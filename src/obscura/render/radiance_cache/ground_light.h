@@ -1,15 +1,16 @@
 #pragma once
 // The cloud's light on the ground (terrain surfaces: a ground plane, a
-// heightfield; Surface::is_terrain) for the radiance cache: what a surface's own radiance
-// (render/background.h) leaves out, since it sees the sky as if no cloud were there. From pass 1's
-// surface deposits (photon_tracing.h): scattered photons arriving at the ground (sun, sky and
-// emission light the cloud sends down) add their power, and the power a sky photon's first
-// collision took from its straight line to the ground (the cloud's shadow on the sky light) is
-// taken away. Their sum per horizontal area is the irradiance the surface misses, ΔE (W m⁻² µm⁻¹),
-// and a Lambertian ground of reflectance ρ sends ρ ΔE n_z / π more towards
-// the camera, n_z the vertical component of its unit normal (a sloped facet
-// over a horizontal area A has the area A / n_z; docs/physics.md, "The
-// cloud's light on the ground").
+// heightfield; Surface::is_terrain) for the radiance cache: what a surface's
+// own radiance (render/background.h) leaves out, since it sees the sky as if
+// no cloud were there. From pass 1's surface deposits (photon_tracing.h):
+// scattered photons arriving at the ground (sun, sky and emission light the
+// cloud sends down) add their power, and the power a sky photon's first
+// collision took from its straight line to the ground (the cloud's shadow on
+// the sky light) is taken away. Their sum per horizontal area is the
+// irradiance the surface misses, ΔE (W m⁻² µm⁻¹), and a Lambertian ground of
+// reflectance ρ sends ρ ΔE n_z / π more towards the camera, n_z the vertical
+// component of its unit normal (a sloped facet over a horizontal area A has
+// the area A / n_z; docs/physics.md, "The cloud's light on the ground").
 //
 // The map is a square of kCells² cells across the photons' bounding disc
 // (twice its radius each side: the light falls beyond the cloud), each
