@@ -34,7 +34,6 @@ class LatticeBatchIntegrator final : public BatchIntegrator {
 
   RenderMethod method() const override { return scene().settings.method; }
   void march_batch(int sensor, std::span<const CameraRay> rays, MediumBatch& out) const override;
-  void add_surface_light(const CameraRay& ray, int sensor, int band, double* behind) const override;
   PreparationStats preparation(int sensor) const override;
 
   const LatticeExecutor& executor() const { return *executor_; }
@@ -44,6 +43,8 @@ class LatticeBatchIntegrator final : public BatchIntegrator {
   const LatticeVolume* volume() const;
 
  private:
+  void add_surface_light(const CameraRay& ray, int sensor, int band, double* behind) const override;
+
   DistinctNodes distinct_;
   GridRecords grid_;                      // emission–absorption's records
   std::unique_ptr<RadianceCache> cache_;  // the radiance cache's

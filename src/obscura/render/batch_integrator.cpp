@@ -24,6 +24,13 @@ std::unique_ptr<RayWorkspace> BatchIntegrator::make_workspace() const {
   return std::make_unique<Workspace>();
 }
 
+void BatchIntegrator::behind_radiance(const CameraRay& ray, int sensor, int band,
+                                      const SpectralNodes& nodes, BackgroundScratch& scratch,
+                                      double* behind) const {
+  background_radiance(scene_, ray, nodes, scratch, behind);
+  add_surface_light(ray, sensor, band, behind);
+}
+
 void BatchIntegrator::band_radiance(const CameraRay& ray, int sensor, int band, Rng& /*rng*/,
                                     RayWorkspace& workspace, double* radiance,
                                     double* transmittance) const {
@@ -34,9 +41,8 @@ void BatchIntegrator::band_radiance(const CameraRay& ray, int sensor, int band, 
   const SpectralNodes& nodes = bands[static_cast<std::size_t>(band)];
   const int first = band_output_offsets(bands)[static_cast<std::size_t>(band)];
   std::array<double, kMaxSpectralNodes> behind;
-  background_radiance(scene_, ray, nodes, static_cast<Workspace&>(workspace).background,
-                      behind.data());
-  add_surface_light(ray, sensor, band, behind.data());
+  behind_radiance(ray, sensor, band, nodes, static_cast<Workspace&>(workspace).background,
+                  behind.data());
   for (std::size_t j = 0; j < nodes.size(); ++j) {
     transmittance[j] = batch.transmittance[first + j];
     radiance[j] = batch.radiance[first + j] + transmittance[j] * behind[j];

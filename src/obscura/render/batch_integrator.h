@@ -10,6 +10,7 @@
 #include <span>
 #include <vector>
 
+#include "obscura/render/background.h"
 #include "obscura/render/integrator.h"
 
 namespace obscura {
@@ -38,13 +39,19 @@ class BatchIntegrator : public Integrator {
   void band_radiance(const CameraRay& ray, int sensor, int band, Rng& rng, RayWorkspace& workspace,
                      double* radiance, double* transmittance) const final;
   std::unique_ptr<RayWorkspace> make_workspace() const override;
+  // What lies behind the medium along `ray` for band `band` (nodes `nodes`)
+  // of sensor `sensor`, per node into `behind`: the background
+  // (render/background.h) plus add_surface_light.
+  void behind_radiance(const CameraRay& ray, int sensor, int band, const SpectralNodes& nodes,
+                       BackgroundScratch& scratch, double* behind) const;
+
+ protected:
   // Light a surface seen by `ray` receives that its own radiance
-  // (render/background.h) leaves out, added to `behind` (band `band` of
-  // sensor `sensor`): the radiance cache's cloud light on the ground.
+  // (render/background.h) leaves out, added to `behind`: the radiance
+  // cache's cloud light on the ground.
   virtual void add_surface_light(const CameraRay& /*ray*/, int /*sensor*/, int /*band*/,
                                  double* /*behind*/) const {}
 
- protected:
   // The staged scene and the nodes of every sensor's bands (spectra[sensor]
   // in the order of march_batch's outputs); both must outlive the integrator.
   BatchIntegrator(const Scene& scene, const FrameSpectra& spectra)

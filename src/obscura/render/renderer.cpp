@@ -276,9 +276,8 @@ void render_batches(const SensorRender& job, const BatchIntegrator& integrator,
           const double air_m = air_path_m(scene, camera);
           for (std::size_t b = 0; b < job.bands.size(); ++b) {
             const SpectralNodes& nodes = job.bands[b];
-            background_radiance(scene, camera, nodes, scratch, behind.data());
-            integrator.add_surface_light(camera, job.sensor_index, static_cast<int>(b),
-                                         behind.data());
+            integrator.behind_radiance(camera, job.sensor_index, static_cast<int>(b), nodes,
+                                       scratch, behind.data());
             for (std::size_t j = 0; j < nodes.size(); ++j) {
               const std::size_t at = (first[b] + j) * count + i;
               transmittance[j] = batch.transmittance[at];

@@ -10,9 +10,7 @@
 #include <type_traits>
 #include <utility>
 
-#include "obscura/core/bbox.h"
 #include "obscura/core/check.h"
-#include "obscura/core/mat3.h"
 #include "obscura/core/parallel.h"
 #include "obscura/core/shared_ranges.h"
 #include "obscura/medium/lattice_walker.h"
@@ -54,33 +52,15 @@ struct LatticeFlight {
   double t0 = 0.0, t1 = 0.0;
 };
 
-// World flights into lattice coordinates (NodeLattice::to_lattice, with the
-// spacing folded into the rotation: no division per flight), clipped to the
-// volume's domain.
-class FlightToLattice {
- public:
-  explicit FlightToLattice(const LatticeVolume& volume)
-      : origin_(volume.lattice().origin()), domain_(volume.domain()) {
-    const Mat3 r = volume.lattice().rotation().transposed();
-    const double inv_h = 1.0 / volume.lattice().spacing_m();
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) m_.m[i][j] = r.m[i][j] * inv_h;
-  }
-
-  // False if nothing of the flight is in the domain.
-  bool operator()(const PhotonFlight& f, LatticeFlight& out) const {
-    out.origin = m_ * (f.origin() - origin_);
-    out.direction = m_ * f.dir();
-    out.t0 = 0.0;
-    out.t1 = f.length_m;
-    return domain_.intersect(Ray{out.origin, out.direction}, out.t0, out.t1) && out.t1 > out.t0;
-  }
-
- private:
-  Mat3 m_;
-  Vec3 origin_;
-  BBox3 domain_;
-};
+bool to_lattice(const LatticeVolume& volume, const PhotonFlight& f, LatticeFlight& out) {
+  const NodeLattice& lattice = volume.lattice();
+  out.origin = lattice.to_lattice(f.origin());
+  out.direction = lattice.to_lattice_direction(f.dir());
+  out.t0 = 0.0;
+  out.t1 = f.length_m;
+  return volume.domain().intersect(Ray{out.origin, out.direction}, out.t0, out.t1) &&
+         out.t1 > out.t0;
+}
 
 // Clips the flight to lattice coordinate `axis` in [lo, hi]; false if
 // nothing is left.
@@ -416,7 +396,6 @@ void splat_flights(const LatticeVolume& volume, int node, const std::vector<Phot
              ranks = static_cast<std::size_t>(processes.size());
   const auto mine = [&](int s) { return static_cast<std::size_t>(s) % ranks == rank; };
 
-  const FlightToLattice to_lattice(volume);
   // Which flights reach which slab: the node layers of the cells it crosses,
   // found per fixed chunk of flights in parallel and joined in chunk order
   // (so in stored order, whatever the thread count).
@@ -429,7 +408,7 @@ void splat_flights(const LatticeVolume& volume, int node, const std::vector<Phot
     Reach& r = chunk_reach[k];
     for (std::size_t i = k * kChunk; i < std::min(flights.size(), (k + 1) * kChunk); ++i) {
       LatticeFlight f;
-      if (!to_lattice(flights[i], f)) continue;
+      if (!to_lattice(volume, flights[i], f)) continue;
       const double a = f.origin[axis] + f.t0 * f.direction[axis],
                    b = f.origin[axis] + f.t1 * f.direction[axis];
       const int lo = std::clamp(static_cast<int>(std::floor(std::min(a, b))), 0, dims[axis] - 2);
@@ -463,7 +442,7 @@ void splat_flights(const LatticeVolume& volume, int node, const std::vector<Phot
       SlabSums sums(lattice, axis, static_cast<int>(s), per_slot);
       for (const std::uint32_t i : reach[s]) {
         LatticeFlight f;
-        to_lattice(flights[i], f);
+        to_lattice(volume, flights[i], f);
         // The part of it in the cells whose corners reach the slab's node
         // layers, cells n0 − 1 … n1 − 1 (the walker must start inside its range).
         const int c0 = std::max(n0 - 1, 0), c1 = std::min(n1 - 1, dims[axis] - 2);

@@ -124,7 +124,7 @@ class RadianceCache {
 };
 
 // Adds to `behind[j]` (a surface's radiance seen along camera ray `camera`,
-// render/background.h) the cloud's light on the ground, ρ ΔE / π
+// render/background.h) the cloud's light on the ground, ρ ΔE n_z / π
 // (ground_light.h), when the ray ends on ground the cache's maps cover;
 // `record[j]` is node j's spectral node in the cache.
 void add_ground_light(const Scene& scene, const RadianceCache& cache, const CameraRay& camera,
