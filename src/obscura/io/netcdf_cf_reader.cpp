@@ -5,6 +5,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <mutex>
 #include <optional>
@@ -17,6 +18,7 @@
 #include "obscura/io/netcdf_cf_axes.h"
 #include "obscura/io/netcdf_cf_data_variable.h"
 #include "obscura/io/netcdf_cf_units.h"
+#include "obscura/io/netcdf_child_read.h"
 #include "obscura/io/netcdf_classic_check.h"
 #include "obscura/io/netcdf_file.h"
 #include "obscura/medium/voxel_grid.h"
@@ -123,7 +125,10 @@ double temperature_offset(const NcReader& r, const DataVar& temp, const NetcdfRe
   return *off;
 }
 
-ConcentrationSeries read_locked(const std::filesystem::path& path, const NetcdfReadOptions& opt) {
+// `header_read` is called once everything before the data is read
+// (netcdf_child_read.h).
+ConcentrationSeries read_locked(const std::filesystem::path& path, const NetcdfReadOptions& opt,
+                                const std::function<void()>& header_read) {
   const std::string file = path.string();
   // Counts and lengths against the file's size first: nc_open allocates what
   // a classic header says (netcdf_classic_check.h).
@@ -156,6 +161,7 @@ ConcentrationSeries read_locked(const std::filesystem::path& path, const NetcdfR
     temp = netcdf_cf::data_variable(r, opt.temperature, axes);
     temp_offset = temperature_offset(r, *temp, opt);
   }
+  header_read();
 
   ConcentrationSeries series;
   series.source = file;
@@ -199,7 +205,13 @@ ConcentrationSeries read_netcdf_cf(const std::filesystem::path& path,
   if (!std::filesystem::exists(path, ec)) throw InputError(file, "", "file not found");
   if (!std::filesystem::is_regular_file(path, ec)) throw InputError(file, "", "not a regular file");
   std::lock_guard lock(netcdf_cf::netcdf_mutex());
-  return read_locked(path, options);
+  // HDF5 may crash or hang on a corrupt netCDF-4 file: a child process reads
+  // it (netcdf_child_read.h).
+  if (netcdf_cf::is_hdf5_container(path))
+    return netcdf_cf::read_in_child_process(file, [&](const std::function<void()>& header_read) {
+      return read_locked(path, options, header_read);
+    });
+  return read_locked(path, options, [] {});
 }
 
 }  // namespace obscura
