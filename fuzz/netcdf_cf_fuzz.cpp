@@ -9,15 +9,15 @@
 // (docs/reliability.md, "Known upstream defects"). So CI fuzzes netcdf_cf and
 // only replays netcdf4_cf's seeds and regressions; netcdf_cf leaves any input
 // that netCDF-C would hand to HDF5 to netcdf4_cf.
-#include <string_view>
+#include <filesystem>
 
 #include "harness.h"
 #include "obscura/io/netcdf_cf.h"
+#include "obscura/io/netcdf_child_read.h"
 
 namespace {
 
-void read_twice(std::string_view bytes) {
-  const auto path = obscura::fuzz::scratch_file("input.nc", bytes);
+void read_twice(const std::filesystem::path& path) {
   obscura::fuzz::ignore_input_errors([&] { obscura::read_netcdf_cf(path); });
   obscura::NetcdfReadOptions with_temperature;
   with_temperature.temperature = "temperature";
@@ -25,19 +25,13 @@ void read_twice(std::string_view bytes) {
   obscura::read_netcdf_cf(path, with_temperature);
 }
 
-// netCDF-C opens a file as netCDF-4 when it finds HDF5's signature at offset
-// 0, 512, 1024, 2048, ... (HDF5's superblock search); any occurrence is taken
-// as one, which keeps every HDF5 parse out of netcdf_cf.
-bool holds_hdf5_signature(std::string_view bytes) {
-  constexpr std::string_view kHdf5Signature("\x89HDF\r\n\x1a\n", 8);
-  return bytes.find(kHdf5Signature) != std::string_view::npos;
-}
-
 }  // namespace
 
 OBSCURA_FUZZ_HARNESS(netcdf_cf) {
-  if (holds_hdf5_signature(bytes)) return;  // netcdf4_cf's input
-  read_twice(bytes);
+  const auto path = obscura::fuzz::scratch_file("input.nc", bytes);
+  // The reader's own test of what netCDF-C would hand to HDF5.
+  if (obscura::netcdf_cf::is_hdf5_container(path)) return;  // netcdf4_cf's input
+  read_twice(path);
 }
 
-OBSCURA_FUZZ_HARNESS(netcdf4_cf) { read_twice(bytes); }
+OBSCURA_FUZZ_HARNESS(netcdf4_cf) { read_twice(obscura::fuzz::scratch_file("input.nc", bytes)); }

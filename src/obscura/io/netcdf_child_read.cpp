@@ -145,55 +145,39 @@ class Child {
   pid_t pid_;
 };
 
+// A message cut short: the child ended, or ran out of time, mid-way.
+struct Interrupted {
+  bool timed_out;
+};
+
 // The parent's end: reads exactly what is asked, within the deadline while
-// one is set.
-class ParentReader {
+// one is set, and throws Interrupted when it cannot.
+class MessageReader {
  public:
   using Clock = std::chrono::steady_clock;
-  enum class Outcome { kRead, kEnded, kTimedOut };
 
-  ParentReader(int fd, Clock::time_point deadline) : fd_(fd), deadline_(deadline) {}
+  MessageReader(int fd, Clock::time_point deadline) : fd_(fd), deadline_(deadline) {}
 
   void end_deadline() { deadline_.reset(); }
 
-  Outcome bytes(void* data, std::size_t n) {
+  void bytes(void* data, std::size_t n) {
     char* p = static_cast<char*>(data);
     while (n > 0) {
       if (deadline_) {
         const auto left =
             std::chrono::duration_cast<std::chrono::milliseconds>(*deadline_ - Clock::now());
-        if (left.count() <= 0) return Outcome::kTimedOut;
+        if (left.count() <= 0) throw Interrupted{true};
         pollfd pfd{fd_, POLLIN, 0};
         const int ready = ::poll(&pfd, 1, static_cast<int>(left.count()));
         if (ready < 0 && errno == EINTR) continue;
-        if (ready == 0) return Outcome::kTimedOut;
+        if (ready == 0) throw Interrupted{true};
       }
       const ssize_t r = ::read(fd_, p, n);
       if (r < 0 && errno == EINTR) continue;
-      if (r <= 0) return Outcome::kEnded;
+      if (r <= 0) throw Interrupted{false};
       p += r;
       n -= static_cast<std::size_t>(r);
     }
-    return Outcome::kRead;
-  }
-
- private:
-  int fd_;
-  std::optional<Clock::time_point> deadline_;
-};
-
-// A message cut short: the child ended or ran out of time mid-way.
-struct Interrupted {
-  ParentReader::Outcome outcome;
-};
-
-class MessageReader {
- public:
-  explicit MessageReader(ParentReader& in) : in_(in) {}
-
-  void bytes(void* data, std::size_t n) {
-    const ParentReader::Outcome o = in_.bytes(data, n);
-    if (o != ParentReader::Outcome::kRead) throw Interrupted{o};
   }
   template <typename T>
   T value() {
@@ -217,7 +201,8 @@ class MessageReader {
   }
 
  private:
-  ParentReader& in_;
+  int fd_;
+  std::optional<Clock::time_point> deadline_;
 };
 
 ConcentrationSeries read_series(MessageReader& m) {
@@ -293,14 +278,13 @@ ConcentrationSeries read_in_child_process(const std::string& file, const ChildRe
   ::close(write_end.fd);
   write_end.fd = -1;  // the child's end only: its end of file is the child's
 
-  const auto limit = std::chrono::duration_cast<ParentReader::Clock::duration>(
+  const auto limit = std::chrono::duration_cast<MessageReader::Clock::duration>(
       std::chrono::duration<double>(header_limit_s));
-  ParentReader in(read_end.fd, ParentReader::Clock::now() + limit);
-  MessageReader m(in);
+  MessageReader m(read_end.fd, MessageReader::Clock::now() + limit);
   try {
     char tag = m.value<char>();
     if (tag == 'H') {
-      in.end_deadline();
+      m.end_deadline();
       tag = m.value<char>();
     }
     switch (tag) {
@@ -324,7 +308,7 @@ ConcentrationSeries read_in_child_process(const std::string& file, const ChildRe
                                         file, static_cast<unsigned char>(tag)));
     }
   } catch (const Interrupted& stop) {
-    if (stop.outcome == ParentReader::Outcome::kTimedOut)
+    if (stop.timed_out)
       throw InputError(file, "",
                        fmt::format("HDF5 had not read the netCDF-4 file's structure after {} s "
                                    "and was stopped: the file is corrupt (HDF5 loops forever "
