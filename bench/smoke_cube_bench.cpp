@@ -25,7 +25,9 @@
 // samples per pixel (stratified: one sample at a pixel's centre is not the pixel's mean where an
 // edge crosses it, and the reference's is). The radiance cache's defaults here, 4 spp and SH degree
 // 3, are what reached 2 % (docs/performance.md). --medium: the cube as a grid of --grid³ voxels
-// (default 32³) or a box (the same medium). Nothing here is asserted.
+// (default 32³) or a box (the same medium). The radiance cache's lattice lies on the grid's
+// voxels, so --grid also sets its spacing: at 16 (12.5 cm) it reaches 2 % soonest
+// (docs/performance.md). Nothing here is asserted.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
