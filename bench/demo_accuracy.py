@@ -8,12 +8,14 @@ cache), then prints per sensor and band: the target region's mean radiance
 (the screening metrics' target_radiance) of both and their relative
 difference, and the relative RMS difference after a 4x4 box blur over pixels
 whose blurred reference is above 1 % of its largest (the radiance-cache
-issue's measures), with the times. Nothing is asserted (docs/performance.md,
-docs/validation.md).
+issue's measures), with the times. Beside the RMSE: the reference's own
+noise on the same measure (the RMS over those pixels of the blurred
+reference's relative standard error), which the RMSE includes in
+quadrature. Nothing is asserted (docs/performance.md, docs/validation.md).
 
     PYTHONPATH=build/release/python /usr/bin/python3 bench/demo_accuracy.py \
         [--size 64x32] [--time 8] [--reference-spp 1024] [--reference-file F]
-        [--method radiance-cache] [--photons N] [--spp 1] [--sh-degree D]
+        [--method radiance-cache] [--photons N] [--spp 4] [--sh-degree D]
         [--estimate tracks|collisions]
         [--voxel M] [--seed N] [--no-sensor-peaks]
 """
@@ -46,7 +48,11 @@ def main():
     parser.add_argument("--reference-file")
     parser.add_argument("--method", default="radiance-cache")
     parser.add_argument("--photons", type=int, default=0)
-    parser.add_argument("--spp", type=int, default=1)
+    # Four stratified samples per pixel by default: the reference is each
+    # pixel's mean, which one sample at the pixel's centre is not where an
+    # edge (the horizon, the cloud's rim) crosses it (docs/validation.md).
+    parser.add_argument("--spp", type=int, default=4,
+                        help="the method's samples per pixel (default 4)")
     parser.add_argument("--sh-degree", type=int, default=0)
     parser.add_argument("--estimate", default="")
     parser.add_argument("--voxel", type=float, default=0.0)
@@ -69,11 +75,13 @@ def main():
             return obscura.Scene.from_dict(d, path=str(tmp / "scene.json"))
 
         key = f"{width}x{height} t={args.time} spp={args.reference_spp}"
-        reference, reference_targets, reference_s = None, None, 0.0
+        reference, reference_stderr, reference_targets, reference_s = None, None, None, 0.0
         if args.reference_file and pathlib.Path(args.reference_file).exists():
             kept = np.load(args.reference_file, allow_pickle=True)
-            if str(kept["key"]) == key:
+            # Files from before the standard errors were kept are made again.
+            if str(kept["key"]) == key and "radiance_stderr" in kept:
                 reference = kept["radiance"].item()
+                reference_stderr = kept["radiance_stderr"].item()
                 reference_targets = kept["targets"].item()
                 reference_s = float(kept["seconds"])
         if reference is None:
@@ -83,10 +91,14 @@ def main():
             reference_s = time.perf_counter() - start
             reference = {(s, b): np.array(result[s].bands[b].radiance, dtype=np.float64)
                          for s in result for b in result[s].bands}
+            reference_stderr = {
+                (s, b): np.array(result[s].bands[b].radiance_stderr, dtype=np.float64)
+                for s in result for b in result[s].bands}
             reference_targets = target_radiance(scene, result, args.time)
             if args.reference_file:
                 np.savez(args.reference_file, key=key, radiance=reference,
-                         targets=reference_targets, seconds=reference_s)
+                         radiance_stderr=reference_stderr, targets=reference_targets,
+                         seconds=reference_s)
 
         extra = {}
         if args.method == "radiance-cache":
@@ -113,15 +125,20 @@ def main():
         print(f"demo frame at t = {args.time} s, {width}x{height} px; reference: path tracer, "
               f"{args.reference_spp} spp, {reference_s:.1f} s; {args.method}: {seconds:.2f} s")
         print(f"{'sensor':12} {'band':10} {'target ref':>11} {'target':>11} {'diff':>8} "
-              f"{'RMSE (4x4)':>11}")
+              f"{'RMSE (4x4)':>11} {'ref noise':>10}")
         for (sensor, band), ref in reference.items():
             got = np.array(result[sensor].bands[band].radiance, dtype=np.float64)
             a, b = blur4(ref), blur4(got)
             keep = a > 0.01 * a.max()
             rmse = np.sqrt(np.mean(((b - a)[keep] / a[keep]) ** 2))
+            # The blurred pixel is the mean of 16 independent pixels: its
+            # variance is the sum of theirs over 16².
+            blurred_stderr = np.sqrt(blur4(reference_stderr[(sensor, band)] ** 2) / 16.0)
+            ref_noise = np.sqrt(np.mean((blurred_stderr[keep] / a[keep]) ** 2))
             t_ref, t_got = reference_targets[(sensor, band)], targets[(sensor, band)]
             diff = t_got / t_ref - 1.0 if t_ref else float("nan")
-            print(f"{sensor:12} {band:10} {t_ref:11.5g} {t_got:11.5g} {diff:8.4f} {rmse:11.4f}")
+            print(f"{sensor:12} {band:10} {t_ref:11.5g} {t_got:11.5g} {diff:8.4f} {rmse:11.4f} "
+                  f"{ref_noise:10.4f}")
 
 
 if __name__ == "__main__":

@@ -9,9 +9,9 @@
 //   bench_screening_demo [--scene examples/demo/scene.json]
 //                        [--prepare examples/smoke-screen/prepare.json]
 //                        [--times 0:30:6] [--threads 0]
-//                        [--method M] [--size WxH] [--photons N]
-// --method, --size (every sensor) and --photons (per spectral node, photon
-// map or radiance cache) override the scene's. Also prints the mean and the
+//                        [--method M] [--size WxH] [--photons N] [--spp N]
+// --method, --size (every sensor), --photons (per spectral node, photon
+// map or radiance cache) and --spp (samples per pixel) override the scene's. Also prints the mean and the
 // peak wall time per frame (all sensors). For the radiance cache the
 // per-frame cache (shared by the sensors) is charged to the first sensor.
 // Run from the repository root (default paths are relative to it).
@@ -56,6 +56,7 @@ int main(int argc, char** argv) {
   double t0 = 0, t1 = 30, step = 6;
   int threads = 0, width = 0, height = 0;
   long long photons = 0;
+  int spp = 0;
   std::string method;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -70,6 +71,13 @@ int main(int argc, char** argv) {
       method = argv[++i];
     else if (a == "--photons" && has_value)
       photons = std::atoll(argv[++i]);
+    else if (a == "--spp" && has_value) {
+      spp = std::atoi(argv[++i]);
+      if (spp < 1) {
+        std::fprintf(stderr, "bench_screening_demo: --spp expects a count of at least 1\n");
+        return 2;
+      }
+    }
     else if (a == "--size" && has_value) {
       if (std::sscanf(argv[++i], "%dx%d", &width, &height) != 2 || width < 1 || height < 1) {
         std::fprintf(stderr, "bench_screening_demo: --size expects WxH\n");
@@ -83,7 +91,7 @@ int main(int argc, char** argv) {
     } else {
       std::fprintf(stderr,
                    "usage: bench_screening_demo [--scene S] [--prepare P] [--times A:B:STEP] "
-                   "[--threads N] [--method M] [--size WxH] [--photons N]\n");
+                   "[--threads N] [--method M] [--size WxH] [--photons N] [--spp N]\n");
       return 2;
     }
   }
@@ -120,6 +128,7 @@ int main(int argc, char** argv) {
       scene.settings.photon_map.photons_per_node = photons;
       scene.settings.radiance_cache.photons_per_node = photons;
     }
+    if (spp > 0) scene.settings.samples_per_pixel = spp;
     std::vector<double> times;
     for (double t = t0; t <= t1 + 1e-9 * step; t += step) times.push_back(t);
     const int frames = static_cast<int>(times.size());
