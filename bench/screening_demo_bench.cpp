@@ -11,10 +11,10 @@
 //                        [--times 0:30:6] [--threads 0]
 //                        [--method M] [--size WxH] [--photons N] [--spp N]
 // --method, --size (every sensor), --photons (per spectral node, photon
-// map or radiance cache) and --spp (samples per pixel) override the scene's. Also prints the mean and the
-// peak wall time per frame (all sensors). For the radiance cache the
-// per-frame cache (shared by the sensors) is charged to the first sensor.
-// Run from the repository root (default paths are relative to it).
+// map or radiance cache) and --spp (samples per pixel) override the scene's. Also prints the mean
+// and the peak wall time per frame (all sensors). For the radiance cache the per-frame cache
+// (shared by the sensors) is charged to the first sensor. Run from the repository root (default
+// paths are relative to it).
 #include <unistd.h>
 
 #include <algorithm>
@@ -77,8 +77,7 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "bench_screening_demo: --spp expects a count of at least 1\n");
         return 2;
       }
-    }
-    else if (a == "--size" && has_value) {
+    } else if (a == "--size" && has_value) {
       if (std::sscanf(argv[++i], "%dx%d", &width, &height) != 2 || width < 1 || height < 1) {
         std::fprintf(stderr, "bench_screening_demo: --size expects WxH\n");
         return 2;

@@ -83,8 +83,8 @@ struct RadianceCacheSettings {
   // laterally infinite, laterally homogeneous slab (validate slab).
   double lateral_period_m = 0.0;
   // "estimate": "tracks" splats every photon flight along its length (the
-  // track-length estimate, where the lattice lies on a grid cloud and the
-  // kernel is one spacing; render/radiance_cache/flight_splat.h),
+  // track-length estimate, where the lattice lies on a grid cloud; a wider
+  // kernel filters its sums, widen_splat in render/radiance_cache/flight_splat.h),
   // "collisions" only the scattering events.
   bool track_length = true;
   // "sensor_peaks": the phase function's forward peak beyond the harmonics

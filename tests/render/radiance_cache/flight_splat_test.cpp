@@ -203,6 +203,82 @@ TEST_P(FlightSplatShapes, TheSumsDoNotDependOnTheThreadOrProcessCount) {
 
 INSTANTIATE_TEST_SUITE_P(LongestAxis, FlightSplatShapes, ::testing::Values(0, 1, 2));
 
+// ∫ K_r(u(t) − n) σs(u(t)) dt along a flight for the tent of r spacings,
+// K_r(u) = Π_a max(0, 1 − |u_a|/r) / (r h)³, by the midpoint rule with many
+// steps: what widen_splat must make of the one-spacing sums.
+std::vector<double> brute_force_wide(const Fixture& f, const PhotonFlight& flight, int r) {
+  const NodeLattice& lattice = f.lattice;
+  std::vector<double> out(lattice.slot_count(), 0.0);
+  const int steps = 100000;
+  const double dt = flight.length_m / steps, h = lattice.spacing_m(), rh = r * h;
+  MediumPoint point;
+  for (int i = 0; i < steps; ++i) {
+    const Vec3 x = flight.origin() + flight.dir() * ((i + 0.5) * dt);
+    f.medium.coefficients_at(x, point);
+    const double sigma_s = f.lerp(point.sigma_s.data());
+    if (sigma_s == 0.0) continue;
+    const Vec3 u = lattice.to_lattice(x);
+    const int i0 = static_cast<int>(std::floor(u.x)), j0 = static_cast<int>(std::floor(u.y)),
+              k0 = static_cast<int>(std::floor(u.z));
+    for (int k = k0 - r + 1; k <= k0 + r; ++k)
+      for (int j = j0 - r + 1; j <= j0 + r; ++j)
+        for (int n = i0 - r + 1; n <= i0 + r; ++n) {
+          const std::size_t slot = lattice.slot_of(n, j, k);
+          if (slot == NodeLattice::kNoSlot) continue;
+          const double w = std::max(0.0, 1.0 - std::abs(u.x - n) / r) *
+                           std::max(0.0, 1.0 - std::abs(u.y - j) / r) *
+                           std::max(0.0, 1.0 - std::abs(u.z - k) / r);
+          out[slot] += w * sigma_s * dt / (rh * rh * rh);
+        }
+  }
+  return out;
+}
+
+TEST(FlightSplat, WideningGivesTheWideTentsIntegralAlongTheFlight) {
+  const Fixture f(kShapes[1]);
+  const BBox3 box = f.medium.bounds();
+  Rng rng(11, 0);
+  for (const int r : {2, 3}) {
+    for (int n = 0; n < 3; ++n) {
+      const Vec3 d = sample_uniform_sphere(rng.uniform(), rng.uniform());
+      const Vec3 target = box.center() + Vec3(0.2 * rng.uniform(), -0.1 * rng.uniform(), 0.0) *
+                                             length(box.extent());
+      const Vec3 start = target - d * length(box.extent());
+      const PhotonFlight flight{
+          {static_cast<float>(start.x), static_cast<float>(start.y), static_cast<float>(start.z)},
+          {static_cast<float>(d.x), static_cast<float>(d.y), static_cast<float>(d.z)},
+          static_cast<float>(2.0 * length(box.extent())),
+          1.5f};
+      std::vector<double> one(f.lattice.slot_count() * 9, 0.0);
+      splat_flights(f.volume, 0, {flight}, 2, 2, one);
+      std::vector<double> wide = one, wide_threads = one;
+      widen_splat(f.lattice, r, 9, 1, wide);
+      widen_splat(f.lattice, r, 9, 2, wide_threads);
+      EXPECT_EQ(0, std::memcmp(wide.data(), wide_threads.data(), wide.size() * sizeof(double)));
+      const std::vector<double> exact = brute_force_wide(f, flight, r);
+      std::array<double, kMaxShCoefficients> y;
+      spherical_harmonics(flight.dir(), y);
+      double largest = 0.0;
+      for (const double v : exact) largest = std::max(largest, v);
+      ASSERT_GT(largest, 0.0);
+      // The widened sums reach nodes the one-spacing splat did not.
+      std::size_t reached_one = 0, reached_wide = 0;
+      for (std::size_t slot = 0; slot < f.lattice.slot_count(); ++slot) {
+        reached_one += one[slot * 9] != 0.0;
+        reached_wide += wide[slot * 9] != 0.0;
+        for (int l = 0; l < 9; ++l)
+          ASSERT_NEAR(wide[slot * 9 + l], 1.5 * y[l] * exact[slot], 2e-3 * 1.5 * largest)
+              << "r " << r << " flight " << n << " slot " << slot << " coefficient " << l;
+      }
+      EXPECT_GT(reached_wide, reached_one);
+    }
+  }
+  // r = 1 changes nothing.
+  std::vector<double> sum(f.lattice.slot_count(), 0.5), same = sum;
+  widen_splat(f.lattice, 1, 1, 2, same);
+  EXPECT_EQ(sum, same);
+}
+
 // On the same walks (flights do not change the random numbers drawn), the
 // total scattered power by tracks, Σ ΔΦ ∫ σs dt, equals the collisions',
 // Σ ΔΦ: both estimate ∫∫ σs L dV dω.

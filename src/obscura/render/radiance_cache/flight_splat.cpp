@@ -474,4 +474,32 @@ void splat_flights(const LatticeVolume& volume, int node, const std::vector<Phot
   if (ranks > 1) share_slabs(lattice, axis, slabs, static_cast<int>(per_slot), processes, sum);
 }
 
+void widen_splat(const NodeLattice& lattice, int r, std::size_t per_slot, int threads,
+                 std::vector<double>& sum) {
+  OBSCURA_CHECK(r >= 1 && sum.size() == lattice.slot_count() * per_slot);
+  if (r == 1) return;
+  std::vector<double> in;
+  for (int axis = 0; axis < 3; ++axis) {
+    in = sum;
+    parallel_for(lattice.block_count(), threads, [&](std::size_t block) {
+      for (std::size_t slot = block * NodeLattice::kBlockNodes;
+           slot < (block + 1) * NodeLattice::kBlockNodes; ++slot) {
+        double* out = sum.data() + slot * per_slot;
+        std::fill(out, out + per_slot, 0.0);
+        if (!lattice.slot_inside(slot)) continue;
+        std::array<int, 3> n = lattice.slot_node(slot);
+        const int centre = n[axis];
+        for (int k = 1 - r; k < r; ++k) {
+          n[axis] = centre + k;
+          const std::size_t from_slot = lattice.slot_of(n[0], n[1], n[2]);
+          if (from_slot == NodeLattice::kNoSlot) continue;
+          const double w = (1.0 - std::abs(k) / static_cast<double>(r)) / r;
+          const double* from = in.data() + from_slot * per_slot;
+          for (std::size_t c = 0; c < per_slot; ++c) out[c] += w * from[c];
+        }
+      }
+    });
+  }
+}
+
 }  // namespace obscura

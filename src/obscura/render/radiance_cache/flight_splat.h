@@ -52,4 +52,17 @@ void splat_flights(const LatticeVolume& volume, int node, const std::vector<Phot
                    const ProcessGroup& processes = single_process(),
                    const std::vector<Vec3>& peak_views = {});
 
+// Turns the sums of splat_flights (the tent kernel of one spacing) into
+// those of the tent kernel of r spacings, K_r(u) = Π_a max(0, 1 − |u_a|/(r h))
+// / (r h)³. The wide tent is piecewise linear with its knots on the nodes,
+// so on the lattice's hats it is exactly
+//   K_r(u) = Σ_k w(k) K_1(u − k h),  w(k) = Π_a (1 − |k_a|/r) / r  (|k_a| < r),
+// and the sums, linear in the kernel, are the same filter of the one-spacing
+// sums: three passes, one per axis, in a fixed order (the result does not
+// depend on the thread count; every process holds the same sums). Nodes the
+// lattice does not hold add nothing (no medium there: their sums are zero).
+// `sum` holds per_slot values per slot; r = 1 leaves it as it is.
+void widen_splat(const NodeLattice& lattice, int r, std::size_t per_slot, int threads,
+                 std::vector<double>& sum);
+
 }  // namespace obscura

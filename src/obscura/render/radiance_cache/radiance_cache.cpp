@@ -367,10 +367,12 @@ void RadianceCache::splat(const Scene& scene, const SpectralNode& node, int inde
   const int peaks = tracing.flights ? static_cast<int>(peak_views_.size()) : 0;
   const std::size_t per_slot = static_cast<std::size_t>(sh_count_ + peaks);
   std::vector<double> sum(slots * per_slot, 0.0);
-  if (tracing.flights)
+  const int r = settings.kernel_radius_nodes;
+  if (tracing.flights) {
     splat_flights(volume_, index, traced.flights, sh_degree_, scene.settings.threads, sum,
                   *processes_, peak_views_);
-  const int r = settings.kernel_radius_nodes;
+    widen_splat(lattice_, r, per_slot, scene.settings.threads, sum);
+  }
   const double h = lattice_.spacing_m();
   const double volume = std::pow(r * h, 3);  // the kernel's normalisation (r h)³
   std::array<double, kMaxShCoefficients> y;

@@ -104,9 +104,9 @@ class RadianceCache {
                  int threads);
   // Whether the splats take the photons' flights (the track-length
   // estimate, flight_splat.h) rather than their collisions: where the
-  // records hold the medium and the kernel is one spacing wide.
+  // records hold the medium (a wider kernel than one spacing by widen_splat).
   bool splats_flights(const RadianceCacheSettings& settings) const {
-    return settings.track_length && volume_.has_medium() && settings.kernel_radius_nodes == 1;
+    return settings.track_length && volume_.has_medium();
   }
 
   NodeLattice lattice_;
