@@ -8,6 +8,7 @@
 #include "obscura/core/planck.h"
 #include "obscura/medium/grid_medium.h"
 #include "obscura/medium/homogeneous_medium.h"
+#include "support/furnace_grid.h"
 #include "support/render_helpers.h"
 
 namespace obscura {
@@ -134,22 +135,8 @@ TEST(Renderer, PathTracerAgreesWithExactImageWithoutScattering) {
 
 // White furnace as an image: a conservative cloud under a uniform sky.
 TEST(Renderer, PathTracerFurnaceImage) {
-  Scene scene;
-  Sensor sensor;
-  sensor.name = "cam";
-  sensor.camera = PinholeCamera({0, -8, 0}, {0, 0, 0}, {0, 0, 1}, 30.0, 6, 6);
-  sensor.bands = {Band::preset("lwir")};
-  scene.sensors.push_back(sensor);
-  auto grid = testing::random_grid({8, 8, 8}, 1, 3);
-  for (std::size_t v = 0; v < grid->dims().count(); ++v) {
-    grid->sigma_s(0)[v] += 2.0f * grid->sigma_a(0)[v];
-    grid->sigma_a(0)[v] = 0.0f;
-  }
-  GridPlacement p = grid->placement();
-  p.origin_m = {-1.5, -1.5, -1.5};
-  grid->set_placement(p);
-  scene.medium = std::make_shared<GridMedium>(grid);
-  scene.sky = Sky::blackbody(300.0, true);
+  Scene scene = testing::furnace_grid_scene(8, 2.0f, 6);
+  const Sensor& sensor = scene.sensors[0];
   scene.settings.method = RenderMethod::kPathTracer;
   scene.settings.samples_per_pixel = 200;
   scene.settings.spectral_nodes_per_band = 2;

@@ -52,21 +52,29 @@ struct Fixture {
 // the phase function's part beyond degree 2 towards it (hg_beyond_degree,
 // with g = (σs g)/σs of the records' trilinear σs g and σs, as the cache
 // reads it everywhere: the peak is steep in g).
-std::vector<double> brute_force(const Fixture& f, const PhotonFlight& flight,
-                                const Vec3* view = nullptr) {
-  const NodeLattice& lattice = f.lattice;
-  std::vector<double> out(lattice.slot_count(), 0.0);
-  const int steps = 200000;
-  const double dt = flight.length_m / steps, h = lattice.spacing_m();
+// Calls visit(x, σs(x), dt) at the midpoints of `steps` equal steps along
+// the flight where the medium scatters.
+template <class Visit>
+void for_each_step(const Fixture& f, const PhotonFlight& flight, int steps, Visit&& visit) {
+  const double dt = flight.length_m / steps;
   MediumPoint point;
   for (int i = 0; i < steps; ++i) {
     const Vec3 x = flight.origin() + flight.dir() * ((i + 0.5) * dt);
     f.medium.coefficients_at(x, point);
     const double sigma_s = f.lerp(point.sigma_s.data());
-    if (sigma_s == 0.0) continue;
+    if (sigma_s != 0.0) visit(x, sigma_s, dt);
+  }
+}
+
+std::vector<double> brute_force(const Fixture& f, const PhotonFlight& flight,
+                                const Vec3* view = nullptr) {
+  const NodeLattice& lattice = f.lattice;
+  std::vector<double> out(lattice.slot_count(), 0.0);
+  const double h = lattice.spacing_m();
+  for_each_step(f, flight, 200000, [&](const Vec3& x, double sigma_s, double dt) {
     std::array<std::size_t, 8> slot;
     std::array<double, 8> w;
-    if (!lattice.corners(x, slot, w)) continue;
+    if (!lattice.corners(x, slot, w)) return;
     double weight = 1.0;
     if (view) {
       double sg = 0.0, s = 0.0;
@@ -81,7 +89,7 @@ std::vector<double> brute_force(const Fixture& f, const PhotonFlight& flight,
     for (int c = 0; c < 8; ++c)
       if (slot[c] != NodeLattice::kNoSlot)
         out[slot[c]] += w[c] * sigma_s * weight * dt / (h * h * h);
-  }
+  });
   return out;
 }
 
@@ -209,14 +217,8 @@ INSTANTIATE_TEST_SUITE_P(LongestAxis, FlightSplatShapes, ::testing::Values(0, 1,
 std::vector<double> brute_force_wide(const Fixture& f, const PhotonFlight& flight, int r) {
   const NodeLattice& lattice = f.lattice;
   std::vector<double> out(lattice.slot_count(), 0.0);
-  const int steps = 100000;
-  const double dt = flight.length_m / steps, h = lattice.spacing_m(), rh = r * h;
-  MediumPoint point;
-  for (int i = 0; i < steps; ++i) {
-    const Vec3 x = flight.origin() + flight.dir() * ((i + 0.5) * dt);
-    f.medium.coefficients_at(x, point);
-    const double sigma_s = f.lerp(point.sigma_s.data());
-    if (sigma_s == 0.0) continue;
+  const double rh = r * lattice.spacing_m();
+  for_each_step(f, flight, 100000, [&](const Vec3& x, double sigma_s, double dt) {
     const Vec3 u = lattice.to_lattice(x);
     const int i0 = static_cast<int>(std::floor(u.x)), j0 = static_cast<int>(std::floor(u.y)),
               k0 = static_cast<int>(std::floor(u.z));
@@ -230,7 +232,7 @@ std::vector<double> brute_force_wide(const Fixture& f, const PhotonFlight& fligh
                            std::max(0.0, 1.0 - std::abs(u.z - k) / r);
           out[slot] += w * sigma_s * dt / (rh * rh * rh);
         }
-  }
+  });
   return out;
 }
 

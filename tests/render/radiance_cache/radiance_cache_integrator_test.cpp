@@ -11,6 +11,7 @@
 #include "obscura/medium/grid_medium.h"
 #include "obscura/medium/homogeneous_medium.h"
 #include "obscura/render/radiance_cache/radiance_cache.h"
+#include "support/furnace_grid.h"
 #include "support/render_helpers.h"
 #include "support/sunlit_grid.h"
 
@@ -79,22 +80,7 @@ TEST(RadianceCacheIntegrator, BitIdenticalWithOneAndTwoThreads) {
 class RadianceCacheFurnace : public ::testing::TestWithParam<int> {};
 
 TEST_P(RadianceCacheFurnace, AConservativeGridCloudIsTheSkysRadiance) {
-  Scene scene;
-  Sensor sensor;
-  sensor.name = "cam";
-  sensor.camera = PinholeCamera({0, -8, 0}, {0, 0, 0}, {0, 0, 1}, 30.0, 12, 12);
-  sensor.bands = {Band::preset("lwir")};
-  scene.sensors.push_back(sensor);
-  auto grid = testing::random_grid({12, 12, 12}, 1, 3);
-  for (std::size_t v = 0; v < grid->dims().count(); ++v) {
-    grid->sigma_s(0)[v] += 4.0f * grid->sigma_a(0)[v];
-    grid->sigma_a(0)[v] = 0.0f;
-  }
-  GridPlacement p = grid->placement();
-  p.origin_m = {-1.5, -1.5, -1.5};
-  grid->set_placement(p);
-  scene.medium = std::make_shared<GridMedium>(grid);
-  scene.sky = Sky::blackbody(300.0, true);
+  Scene scene = testing::furnace_grid_scene(12, 4.0f, 12);
   scene.settings.method = RenderMethod::kRadianceCache;
   scene.settings.spectral_nodes_per_band = 1;
   scene.settings.radiance_cache.photons_per_node = 400000;
