@@ -47,11 +47,6 @@ struct Fixture {
   LatticeVolume volume{lattice, {lerp}, record::light_stride(9), grid.get(), 1, "test"};
 };
 
-// ∫ hat_n(u(t)) σs(u(t)) dt / h³ along a flight by the midpoint rule with
-// many steps, σs from the medium itself; with `view`, the same weighted by
-// the phase function's part beyond degree 2 towards it (hg_beyond_degree,
-// with g = (σs g)/σs of the records' trilinear σs g and σs, as the cache
-// reads it everywhere: the peak is steep in g).
 // Calls visit(x, σs(x), dt) at the midpoints of `steps` equal steps along
 // the flight where the medium scatters.
 template <class Visit>
@@ -66,6 +61,11 @@ void for_each_step(const Fixture& f, const PhotonFlight& flight, int steps, Visi
   }
 }
 
+// ∫ hat_n(u(t)) σs(u(t)) dt / h³ along a flight by the midpoint rule with
+// many steps, σs from the medium itself; with `view`, the same weighted by
+// the phase function's part beyond degree 2 towards it (hg_beyond_degree,
+// with g = (σs g)/σs of the records' trilinear σs g and σs, as the cache
+// reads it everywhere: the peak is steep in g).
 std::vector<double> brute_force(const Fixture& f, const PhotonFlight& flight,
                                 const Vec3* view = nullptr) {
   const NodeLattice& lattice = f.lattice;

@@ -202,15 +202,12 @@ void splat_flight(const PhotonFlight& flight, const LatticeFlight& f,
                   const std::vector<Vec3>& peak_views, CellCorners& cell_corners, SlabSums& sums) {
   std::array<double, kMaxShCoefficients> y;
   spherical_harmonics(flight.dir(), y);
-  // The harmonics in 4-float vectors (the flush below is the splat's
-  // commonest arithmetic; GCC leaves the plain loop scalar), the last one
-  // padded with zeros.
+  // The harmonics in floats, added to a node four at a time (the flush
+  // below is the splat's commonest arithmetic; GCC leaves the plain loop
+  // scalar).
   using Float4 = float __attribute__((vector_size(16)));
-  constexpr int kVectors = (Count + 3) / 4;
-  std::array<float, 4 * kVectors> y_padded{};
-  for (int l = 0; l < Count; ++l) y_padded[l] = static_cast<float>(y[l]);
-  std::array<Float4, kVectors> y_float;
-  std::memcpy(y_float.data(), y_padded.data(), sizeof y_float);
+  std::array<float, Count> y_float;
+  for (int l = 0; l < Count; ++l) y_float[l] = static_cast<float>(y[l]);
   LatticeWalker walker(f.origin, f.direction, f.t0, f.t1, 1.0, cell_lo, cell_hi);
   // The forward peak towards each sensor's direction, at the flight's
   // cosine with it (only g changes along the flight).
@@ -233,12 +230,13 @@ void splat_flight(const PhotonFlight& flight, const LatticeFlight& f,
     float* acc = sums.at(held_slot[c]);
     const auto wc = static_cast<float>(scale * held[c]);
     for (int q = 0; q < Count / 4; ++q) {
-      Float4 a;
+      Float4 a, y4;
       std::memcpy(&a, acc + 4 * q, sizeof a);
-      a += wc * y_float[q];
+      std::memcpy(&y4, y_float.data() + 4 * q, sizeof y4);
+      a += wc * y4;
       std::memcpy(acc + 4 * q, &a, sizeof a);
     }
-    for (int l = Count / 4 * 4; l < Count; ++l) acc[l] += wc * y_padded[l];
+    for (int l = Count / 4 * 4; l < Count; ++l) acc[l] += wc * y_float[l];
     for (int v = 0; v < Peaks; ++v) acc[Count + v] += static_cast<float>(scale * held_peak[c][v]);
   };
   std::array<std::size_t, 8> slot;
