@@ -47,17 +47,14 @@ OBSCURA_HOST_DEVICE inline double fast_exp(double x) {
 // e^{−x} for 0 ≤ x ≤ 0.1 (the cell quadrature's thin cells): its Taylor
 // series to degree 9, whose remainder x¹⁰/10! ≤ 2.8e-17 is below rounding.
 OBSCURA_HOST_DEVICE inline double exp_neg_small(double x) {
-  const double y = -x;
-  double p = 1.0 / 362880.0;  // 1/9!
-  p = p * y + 1.0 / 40320.0;
-  p = p * y + 1.0 / 5040.0;
-  p = p * y + 1.0 / 720.0;
-  p = p * y + 1.0 / 120.0;
-  p = p * y + 1.0 / 24.0;
-  p = p * y + 1.0 / 6.0;
-  p = p * y + 0.5;
-  p = p * y + 1.0;
-  return p * y + 1.0;
+  // Estrin's scheme: the same polynomial in four levels of independent
+  // multiply-adds instead of Horner's chain of nine, whose latency the
+  // camera march waited on (docs/performance.md, "Shorter chains").
+  const double y = -x, y2 = y * y, y4 = y2 * y2;
+  const double p01 = 1.0 + y, p23 = 0.5 + y * (1.0 / 6.0);
+  const double p45 = 1.0 / 24.0 + y * (1.0 / 120.0), p67 = 1.0 / 720.0 + y * (1.0 / 5040.0);
+  const double p89 = 1.0 / 40320.0 + y * (1.0 / 362880.0);
+  return (p01 + y2 * p23) + y4 * ((p45 + y2 * p67) + y4 * p89);
 }
 
 }  // namespace obscura

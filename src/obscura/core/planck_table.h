@@ -33,7 +33,7 @@ struct PlanckTableView {
     const double u = temperature_k - i;
     // The Hermite cubic on [i, i + 1] in powers of u.
     const double* c = cubic + 4 * static_cast<std::size_t>(i);
-    return c[0] + u * (c[1] + u * (c[2] + u * c[3]));
+    return (c[0] + u * c[1]) + (u * u) * (c[2] + u * c[3]);  // Estrin: two levels, not three
   }
 };
 

@@ -54,17 +54,18 @@ struct CellEmission {
 OBSCURA_HOST_DEVICE inline CellEmission integrate_cell(double h, const double sigma_t[3],
                                                        const double emissivity[3]) {
   CellEmission out;
-  const double d = h / 6.0 * (sigma_t[0] + 4.0 * sigma_t[1] + sigma_t[2]);
+  const double h6 = h * (1.0 / 6.0);
+  const double d = h6 * (sigma_t[0] + 4.0 * sigma_t[1] + sigma_t[2]);
   if (!(d > 0.0)) return out;
   const bool thin = d < kThinCell;
   const double e = thin ? exp_neg_small(d) : fast_exp(-d);
   out.transmittance = e;
   const double t_half =
-      std::clamp(h / 24.0 * (5.0 * sigma_t[0] + 8.0 * sigma_t[1] - sigma_t[2]), 0.0, d);
+      std::clamp(h * (1.0 / 24.0) * (5.0 * sigma_t[0] + 8.0 * sigma_t[1] - sigma_t[2]), 0.0, d);
   if (emissivity[0] == 0.0 && emissivity[1] == 0.0 && emissivity[2] == 0.0) return out;
   if (thin) {
     out.emitted =
-        h / 6.0 * (emissivity[0] + 4.0 * emissivity[1] * exp_neg_small(t_half) + emissivity[2] * e);
+        h6 * (emissivity[0] + 4.0 * emissivity[1] * exp_neg_small(t_half) + emissivity[2] * e);
     return out;
   }
   // Source function per point; where σt = 0 the emissivity is 0 too and the
