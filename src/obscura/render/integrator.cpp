@@ -48,4 +48,16 @@ DistinctNodes distinct_nodes(const FrameSpectra& spectra) {
   return out;
 }
 
+std::vector<std::vector<int>> sensors_of_nodes(const DistinctNodes& distinct) {
+  std::vector<std::vector<int>> sensors(distinct.nodes.size());
+  for (std::size_t s = 0; s < distinct.index.size(); ++s)
+    for (const std::vector<int>& band : distinct.index[s])
+      for (const int u : band) {
+        std::vector<int>& of_node = sensors[static_cast<std::size_t>(u)];
+        if (of_node.empty() || of_node.back() != static_cast<int>(s))
+          of_node.push_back(static_cast<int>(s));
+      }
+  return sensors;
+}
+
 }  // namespace obscura

@@ -53,6 +53,8 @@ struct DistinctNodes {
   std::vector<std::vector<std::vector<int>>> index;  // [sensor][band][node]
 };
 DistinctNodes distinct_nodes(const FrameSpectra& spectra);
+// Per distinct node, the sensors whose bands hold it (indices, ascending).
+std::vector<std::vector<int>> sensors_of_nodes(const DistinctNodes& distinct);
 
 // Per-thread scratch of an integrator, and the counters it keeps while it
 // works (summed into RenderStats by the renderer).

@@ -172,10 +172,11 @@ TEST_P(FlightSplatShapes, EachNodeGetsTheKernelIntegralAlongTheFlight) {
   }
 }
 
-TEST_P(FlightSplatShapes, TheSumsDoNotDependOnTheThreadOrProcessCount) {
-  const Fixture f(kShapes[GetParam()]);
+// 3000 flights from random points of the grid's box in random directions,
+// up to 3 m long.
+std::vector<PhotonFlight> random_flights(const Fixture& f, std::uint64_t seed) {
   std::vector<PhotonFlight> flights;
-  Rng rng(8, 0);
+  Rng rng(seed, 0);
   const BBox3 box = f.medium.bounds();
   for (int i = 0; i < 3000; ++i) {
     const Vec3 e = box.extent();
@@ -186,6 +187,12 @@ TEST_P(FlightSplatShapes, TheSumsDoNotDependOnTheThreadOrProcessCount) {
                        static_cast<float>(3.0 * rng.uniform()),
                        static_cast<float>(rng.uniform())});
   }
+  return flights;
+}
+
+TEST_P(FlightSplatShapes, TheSumsDoNotDependOnTheThreadOrProcessCount) {
+  const Fixture f(kShapes[GetParam()]);
+  const std::vector<PhotonFlight> flights = random_flights(f, 8);
   // Degree 3 and two sensors' peaks: 18 sums per slot.
   const std::vector<Vec3> views = {normalize(Vec3(0.2, -1.0, 0.1)), Vec3(0, 0, 1)};
   std::vector<double> one(f.lattice.slot_count() * 18, 0.0), two = one;
@@ -207,6 +214,50 @@ TEST_P(FlightSplatShapes, TheSumsDoNotDependOnTheThreadOrProcessCount) {
                                one.size() * sizeof(double)))
           << ranks << " ranks, rank " << r;
   }
+}
+
+// With a box of cells (light_region.h) the walk is cut to it, each cell
+// keeping the crossings of the whole walk: a node whose eight cells are all
+// in the box gets the same bits as without it, nodes outside get nothing,
+// and nodes on its faces part of their sums.
+TEST_P(FlightSplatShapes, ABoxOfCellsKeepsTheSumsOfTheNodesInside) {
+  const Fixture f(kShapes[GetParam()]);
+  const std::vector<PhotonFlight> flights = random_flights(f, 9);
+  const std::vector<Vec3> views = {normalize(Vec3(0.2, -1.0, 0.1))};
+  const std::size_t per_slot = 17;  // degree 3 and one sensor's peak
+  std::vector<double> whole(f.lattice.slot_count() * per_slot, 0.0), cut = whole;
+  splat_flights(f.volume, 0, flights, 3, 2, whole, single_process(), views);
+  // The middle of the lattice, a third to two thirds along each axis.
+  CellBox box;
+  for (int a = 0; a < 3; ++a) {
+    box.lo[a] = f.lattice.dims()[a] / 3;
+    box.hi[a] = 2 * f.lattice.dims()[a] / 3;
+  }
+  splat_flights(f.volume, 0, flights, 3, 2, cut, single_process(), views, &box);
+  int inside = 0, on_faces = 0, faces_differ = 0;
+  for (std::size_t slot = 0; slot < f.lattice.slot_count(); ++slot) {
+    if (!f.lattice.slot_inside(slot)) continue;
+    const std::array<int, 3> n = f.lattice.slot_node(slot);
+    bool core = true, reached = true;
+    for (int a = 0; a < 3; ++a) {
+      core = core && n[a] >= box.lo[a] + 1 && n[a] <= box.hi[a];
+      reached = reached && n[a] >= box.lo[a] && n[a] <= box.hi[a] + 1;
+    }
+    const double* w = whole.data() + slot * per_slot;
+    const double* c = cut.data() + slot * per_slot;
+    if (core) {
+      ++inside;
+      EXPECT_EQ(0, std::memcmp(w, c, per_slot * sizeof(double)))
+          << "node " << n[0] << " " << n[1] << " " << n[2];
+    } else if (reached) {
+      ++on_faces;
+      faces_differ += std::memcmp(w, c, per_slot * sizeof(double)) != 0;
+    } else {
+      for (std::size_t k = 0; k < per_slot; ++k) EXPECT_EQ(c[k], 0.0);
+    }
+  }
+  EXPECT_GT(inside, 20);
+  EXPECT_GT(faces_differ, on_faces / 4);
 }
 
 INSTANTIATE_TEST_SUITE_P(LongestAxis, FlightSplatShapes, ::testing::Values(0, 1, 2));

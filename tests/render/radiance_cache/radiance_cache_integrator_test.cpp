@@ -173,5 +173,67 @@ TEST(RadianceCache, ForwardPeaksGoToNarrowSensorsAsFarAsTheRecordsHoldThem) {
   }
 }
 
+// The light is made only in a box around what the sensors look at
+// (light_region.h): a narrow sensor that sees a part of a wide grid cloud
+// gets the same image, bit for bit, as when a wide sensor of the same band
+// has the light made everywhere; for the tent of one and of two spacings.
+class RadianceCacheLightInView : public ::testing::TestWithParam<int> {};
+
+TEST_P(RadianceCacheLightInView, ANarrowSensorSeesTheSameImage) {
+  Scene narrow;
+  narrow.medium = std::make_shared<GridMedium>(
+      testing::random_grid({72, 24, 12}, 3, 5, rotation_from_euler_deg({5, 0, 10})));
+  narrow.surfaces.push_back(
+      std::make_unique<GroundPlane>("ground", SurfaceMaterial{290, 0.7}, 2.6));
+  narrow.sky = Sky::blackbody(240, true);
+  narrow.sun.enabled = true;
+  narrow.sun.elevation_deg = 40.0;
+  narrow.sun.azimuth_deg = 120.0;
+  narrow.settings.method = RenderMethod::kRadianceCache;
+  narrow.settings.spectral_nodes_per_band = 2;
+  narrow.settings.radiance_cache.photons_per_node = 20000;
+  narrow.settings.radiance_cache.kernel_radius_nodes = GetParam();
+  const Vec3 c = narrow.medium->bounds().center();
+  const auto sensor = [&](const std::string& name, double fov_deg) {
+    Sensor s;
+    s.name = name;
+    s.camera = PinholeCamera(c + Vec3{-3, -40, 1}, c + Vec3{-3, 0, 0}, {0, 0, 1}, fov_deg, 24, 16);
+    s.bands = {Band::flat("b", 3.2, 4.9)};
+    return s;
+  };
+  narrow.sensors.push_back(sensor("narrow", 4.0));
+  Scene both;
+  both.medium = narrow.medium;
+  both.surfaces.push_back(std::make_unique<GroundPlane>("ground", SurfaceMaterial{290, 0.7}, 2.6));
+  both.sky = narrow.sky;
+  both.sun = narrow.sun;
+  both.settings = narrow.settings;
+  both.sensors = {narrow.sensors[0], sensor("wide", 60.0)};
+
+  // The narrow sensor's box is a small part of the lattice; with the wide
+  // one it is all of it.
+  const std::vector<SpectralNode> nodes(
+      SpectralNodes(BandQuadrature(Band::flat("b", 3.2, 4.9), 1, 0.0),
+                    narrow.medium->wavelengths_um())
+          .nodes());
+  narrow.settings.threads = 2;
+  both.settings.threads = 2;
+  const auto cells = [](const CellBox& b) {
+    return static_cast<long long>(b.hi[0] - b.lo[0] + 1) * (b.hi[1] - b.lo[1] + 1) *
+           (b.hi[2] - b.lo[2] + 1);
+  };
+  const RadianceCache seen(narrow, nodes, single_process(), RadianceCache::SunDepths::kHere, {{0}});
+  const RadianceCache everywhere(both, nodes, single_process(), RadianceCache::SunDepths::kHere,
+                                 {{0, 1}});
+  const long long all = cells(all_cells(seen.lattice()));
+  EXPECT_LT(cells(seen.light_cells(0)), all / 2);
+  EXPECT_EQ(cells(everywhere.light_cells(0)), all);
+
+  expect_same_bits(testing::render_first_sensor(narrow, 2, 3),
+                   testing::render_first_sensor(both, 2, 3));
+}
+
+INSTANTIATE_TEST_SUITE_P(KernelRadius, RadianceCacheLightInView, ::testing::Values(1, 2));
+
 }  // namespace
 }  // namespace obscura

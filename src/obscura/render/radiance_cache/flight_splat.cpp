@@ -378,9 +378,21 @@ void dispatch_splat(int sh_degree, int peaks, F&& f) {
 
 void splat_flights(const LatticeVolume& volume, int node, const std::vector<PhotonFlight>& flights,
                    int sh_degree, int threads, std::vector<double>& sum,
-                   const ProcessGroup& processes, const std::vector<Vec3>& peak_views) {
+                   const ProcessGroup& processes, const std::vector<Vec3>& peak_views,
+                   const CellBox* cells) {
   OBSCURA_CHECK(volume.has_medium());
   const NodeLattice& lattice = volume.lattice();
+  const CellBox box = cells ? *cells : all_cells(lattice);
+  if (cells && box.empty()) return;
+  // A flight's part in the box's cells, false if none: clipped with the
+  // walker's own arithmetic (clip_to_layers), so the cells inside keep the
+  // crossings an unclipped walk gives them.
+  const auto in_box = [&](LatticeFlight& f) {
+    if (!cells) return true;
+    for (int a = 0; a < 3; ++a)
+      if (!clip_to_layers(f, a, box.lo[a], box.hi[a] + 1)) return false;
+    return true;
+  };
   const int count = sh_coefficient_count(sh_degree);
   const int peaks = static_cast<int>(peak_views.size());
   OBSCURA_CHECK(peaks <= kMaxPeakViews);
@@ -420,7 +432,7 @@ void splat_flights(const LatticeVolume& volume, int node, const std::vector<Phot
     Reach& r = chunk_reach[k];
     for (std::size_t i = k * kChunk; i < std::min(flights.size(), (k + 1) * kChunk); ++i) {
       LatticeFlight f;
-      if (!to_lattice(volume, flights[i], f)) continue;
+      if (!to_lattice(volume, flights[i], f) || !in_box(f)) continue;
       const double a = f.origin[axis] + f.t0 * f.direction[axis],
                    b = f.origin[axis] + f.t1 * f.direction[axis];
       const int lo = std::clamp(static_cast<int>(std::floor(std::min(a, b))), 0, dims[axis] - 2);
@@ -455,11 +467,12 @@ void splat_flights(const LatticeVolume& volume, int node, const std::vector<Phot
       for (const std::uint32_t i : reach[s]) {
         LatticeFlight f;
         to_lattice(volume, flights[i], f);
-        // The part of it in the cells whose corners reach the slab's node
-        // layers, cells n0 − 1 … n1 − 1 (the walker must start inside its range).
-        const int c0 = std::max(n0 - 1, 0), c1 = std::min(n1 - 1, dims[axis] - 2);
-        if (!clip_to_layers(f, axis, c0, c1 + 1)) continue;
-        std::array<int, 3> cell_lo{0, 0, 0}, cell_hi{dims[0] - 2, dims[1] - 2, dims[2] - 2};
+        // The part of it in the box and in the cells whose corners reach the
+        // slab's node layers, cells n0 − 1 … n1 − 1 (the walker must start
+        // inside its range).
+        const int c0 = std::max(n0 - 1, box.lo[axis]), c1 = std::min(n1 - 1, box.hi[axis]);
+        if (c1 < c0 || !in_box(f) || !clip_to_layers(f, axis, c0, c1 + 1)) continue;
+        std::array<int, 3> cell_lo = box.lo, cell_hi = box.hi;
         cell_lo[axis] = c0;
         cell_hi[axis] = c1;
         splat_flight<kCount, kPeaks>(flights[i], f, cell_lo, cell_hi, axis, n0, n1,

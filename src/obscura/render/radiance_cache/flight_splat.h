@@ -32,6 +32,7 @@
 #include "obscura/core/vec3.h"
 #include "obscura/render/lattice/lattice_volume.h"
 #include "obscura/render/photon_map/photon.h"
+#include "obscura/render/radiance_cache/light_region.h"
 
 namespace obscura {
 
@@ -45,12 +46,15 @@ inline constexpr int kMaxPeakViews = 2;
 // `peak_views` (unit, the direction light leaves towards a sensor; at most
 // kMaxPeakViews): ΔΦ ∫_flight K σs q(ω_flight·ω; g) dt with q what the
 // harmonics leave out of the phase function (hg_beyond_degree,
-// cache_source.h) and g = (σs g)/σs along the flight. Every process of
-// `processes` must call it with the same flights (a collective).
+// cache_source.h) and g = (σs g)/σs along the flight. With `cells`, only
+// the flights' parts in those cells are walked (light_region.h): the nodes
+// more than one spacing inside the box get the same sums, those nearer its
+// faces part of theirs. Every process of `processes` must call it with the
+// same flights and box (a collective).
 void splat_flights(const LatticeVolume& volume, int node, const std::vector<PhotonFlight>& flights,
                    int sh_degree, int threads, std::vector<double>& sum,
                    const ProcessGroup& processes = single_process(),
-                   const std::vector<Vec3>& peak_views = {});
+                   const std::vector<Vec3>& peak_views = {}, const CellBox* cells = nullptr);
 
 // Turns the sums of splat_flights (the tent kernel of one spacing) into
 // those of the tent kernel of r spacings, K_r(u) = Π_a max(0, 1 − |u_a|/(r h))

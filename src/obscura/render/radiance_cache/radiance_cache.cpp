@@ -101,7 +101,8 @@ std::vector<SpectralLerp> lerps_of(const std::vector<SpectralNode>& nodes) {
 }  // namespace
 
 RadianceCache::RadianceCache(const Scene& scene, const std::vector<SpectralNode>& nodes,
-                             const ProcessGroup& processes, SunDepths sun_depths)
+                             const ProcessGroup& processes, SunDepths sun_depths,
+                             const std::vector<std::vector<int>>& node_sensors)
     : lattice_(*scene.medium, scene.settings.radiance_cache.voxel_m,
                scene.settings.radiance_cache.lateral_period_m,
                static_cast<std::size_t>(kMaxLatticeNodes)),
@@ -128,6 +129,7 @@ RadianceCache::RadianceCache(const Scene& scene, const std::vector<SpectralNode>
                            lattice_.spacing_m()));
   ground_.resize(nodes.size());
   choose_peak_views(scene);
+  choose_light_cells(scene, nodes.size(), node_sensors);
   const std::vector<float> kernel_moments = kernel_scattering(scene);
   const auto sun_start = std::chrono::steady_clock::now();
   compute_sun(scene, nodes);
@@ -162,12 +164,48 @@ void RadianceCache::choose_peak_views(const Scene& scene) {
   }
 }
 
+void RadianceCache::choose_light_cells(const Scene& scene, std::size_t nodes,
+                                       const std::vector<std::vector<int>>& node_sensors) {
+  light_cells_.assign(nodes, all_cells(lattice_));
+  sun_cells_ = all_cells(lattice_);
+  // Only the track-length splat walks a box; a periodic lattice's rays wrap.
+  if (node_sensors.empty() || !splats_flights(scene.settings.radiance_cache) || lattice_.periodic())
+    return;
+  OBSCURA_CHECK(node_sensors.size() == nodes);
+  light_in_view_ = true;
+  // A node's light reads the cells within the kernel's r of it (the splat's
+  // hats widened, widen_splat) and of its neighbours (move_to_nodes), and a
+  // camera ray reads the nodes of the cells it crosses: r + 1 cells around
+  // those; one more against off-by-one (docs/physics.md, "Only where the
+  // sensors look").
+  const int margin = scene.settings.radiance_cache.kernel_radius_nodes + 2;
+  sun_cells_.lo = lattice_.dims();
+  sun_cells_.hi = {-1, -1, -1};
+  for (std::size_t u = 0; u < nodes; ++u) {
+    std::vector<const PinholeCamera*> cameras;
+    for (const int s : node_sensors[u])
+      cameras.push_back(&scene.sensors[static_cast<std::size_t>(s)].camera);
+    light_cells_[u] = cells_in_view(lattice_, cameras, margin);
+    for (int a = 0; a < 3; ++a) {
+      sun_cells_.lo[a] = std::min(sun_cells_.lo[a], light_cells_[u].lo[a]);
+      sun_cells_.hi[a] = std::max(sun_cells_.hi[a], light_cells_[u].hi[a]);
+    }
+  }
+}
+
 void RadianceCache::compute_sun(const Scene& scene, const std::vector<SpectralNode>& nodes) {
   if (!has_sun_) return;
   const std::size_t per_slot = static_cast<std::size_t>(spectral_count_) + 1;
   // τ_sun per medium sample, then the visibility, per slot.
   std::vector<float> sun(lattice_.slot_count() * per_slot, 0.0f);
   const Vec3 to_sun = scene.sun.direction();
+  // Nodes of the cells in sun_cells_ (a node serves the cells on both sides).
+  const auto in_sun_cells = [&](std::size_t slot) {
+    const std::array<int, 3> n = lattice_.slot_node(slot);
+    for (int a = 0; a < 3; ++a)
+      if (n[a] < sun_cells_.lo[a] || n[a] > sun_cells_.hi[a] + 1) return false;
+    return true;
+  };
   // A surface within one node diagonal does not shade a node: the node is
   // then on or just under it (the ground beneath a cloud's lowest nodes),
   // and its values serve the cells above.
@@ -183,7 +221,7 @@ void RadianceCache::compute_sun(const Scene& scene, const std::vector<SpectralNo
         std::vector<double> tau(static_cast<std::size_t>(spectral_count_)), inner(tau.size());
         for (std::size_t slot = block * NodeLattice::kBlockNodes;
              slot < (block + 1) * NodeLattice::kBlockNodes; ++slot) {
-          if (!lattice_.slot_inside(slot)) continue;
+          if (!lattice_.slot_inside(slot) || !in_sun_cells(slot)) continue;
           const Ray ray{lattice_.slot_position(slot), to_sun};
           SurfaceHit hit;
           const bool shaded = intersect_surfaces(scene.surfaces, ray, near_m,
@@ -369,8 +407,10 @@ void RadianceCache::splat(const Scene& scene, const SpectralNode& node, int inde
   std::vector<double> sum(slots * per_slot, 0.0);
   const int r = settings.kernel_radius_nodes;
   if (tracing.flights) {
+    const CellBox* cells =
+        light_in_view_ ? &light_cells_[static_cast<std::size_t>(index)] : nullptr;
     splat_flights(volume_, index, traced.flights, sh_degree_, scene.settings.threads, sum,
-                  *processes_, peak_views_);
+                  *processes_, peak_views_, cells);
     widen_splat(lattice_, r, per_slot, scene.settings.threads, sum);
   }
   const double h = lattice_.spacing_m();

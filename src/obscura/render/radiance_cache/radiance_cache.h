@@ -39,6 +39,7 @@
 #include "obscura/render/lattice/lattice_volume.h"
 #include "obscura/render/lattice/node_lattice.h"
 #include "obscura/render/radiance_cache/ground_light.h"
+#include "obscura/render/radiance_cache/light_region.h"
 #include "obscura/render/radiance_cache/spherical_harmonics.h"
 
 namespace obscura {
@@ -53,9 +54,15 @@ class RadianceCache {
   // caller afterwards (the GPU's sun kernel, gpu/sun_depth_job.h), which finds
   // the channel zero and V_sun filled in.
   enum class SunDepths { kHere, kByCaller };
+  // `node_sensors`: per node (in the order given), the indices of the
+  // scene's sensors whose camera rays alone will read it; the light (the
+  // track-length splat and the sun's depths) is then made only in the box
+  // around what they see (light_region.h: the same bits there, zero
+  // elsewhere). Empty: everywhere, for rays in any direction.
   RadianceCache(const Scene& scene, const std::vector<SpectralNode>& nodes,
                 const ProcessGroup& processes = single_process(),
-                SunDepths sun_depths = SunDepths::kHere);
+                SunDepths sun_depths = SunDepths::kHere,
+                const std::vector<std::vector<int>>& node_sensors = {});
 
   // Sensors whose image's half-diagonal is at most this get the phase
   // function's forward peak beyond the harmonics (sensor_peaks).
@@ -66,6 +73,11 @@ class RadianceCache {
   // forward peak towards sensor `sensor`'s view, −1 where it has none.
   int peak_channel(int sensor) const {
     return sensor < static_cast<int>(sensor_peak_.size()) ? sensor_peak_[sensor] : -1;
+  }
+  // The cells whose light is made for spectral node `node` (all_cells
+  // without node_sensors).
+  const CellBox& light_cells(int node) const {
+    return light_cells_[static_cast<std::size_t>(node)];
   }
   int sh_degree() const { return sh_degree_; }
   int sh_count() const { return sh_count_; }
@@ -88,6 +100,8 @@ class RadianceCache {
 
  private:
   void compute_sun(const Scene& scene, const std::vector<SpectralNode>& nodes);
+  void choose_light_cells(const Scene& scene, std::size_t nodes,
+                          const std::vector<std::vector<int>>& node_sensors);
   void choose_peak_views(const Scene& scene);
   // Per slot and medium sample, ∫ K(x − x_n) σs(x) dV (the splats'
   // denominator) and its first moments ∫ K σs (x − x_n) dV along the
@@ -119,7 +133,10 @@ class RadianceCache {
   std::vector<int> sensor_peak_;
   SunDepths sun_depths_ = SunDepths::kHere;
   LatticeVolume volume_;
-  std::vector<GroundLight> ground_;  // per spectral node
+  std::vector<GroundLight> ground_;   // per spectral node
+  std::vector<CellBox> light_cells_;  // per spectral node
+  CellBox sun_cells_;                 // their union's bounds
+  bool light_in_view_ = false;        // whether they are boxes around sensors' views
   std::uint64_t photons_stored_ = 0;
 };
 

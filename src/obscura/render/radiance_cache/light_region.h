@@ -1,0 +1,37 @@
+#pragma once
+// Where a radiance cache's light is needed: the lattice cells that pinhole
+// sensors' camera rays can read, with a margin. A narrow sensor (the demo's
+// 1.2° television camera) sees a thin wedge of a wide cloud, and the
+// track-length splat (flight_splat.h) then walks only the flights' parts in
+// the box around that wedge. The light of a node inside the box's core comes
+// out with the same bits as without the box: the walker's cell crossings do
+// not depend on where a walk starts, and a node's estimate reads only the
+// cells within `margin_nodes` of it (docs/physics.md, "Only where the sensors
+// look").
+#include <array>
+#include <vector>
+
+#include "obscura/render/lattice/node_lattice.h"
+#include "obscura/scene/camera.h"
+
+namespace obscura {
+
+// Cells lo[a] … hi[a] (inclusive) along each lattice axis; a cell (i, j, k)
+// spans lattice coordinates [i, i + 1] × [j, j + 1] × [k, k + 1].
+struct CellBox {
+  std::array<int, 3> lo{0, 0, 0}, hi{-1, -1, -1};
+  bool empty() const { return hi[0] < lo[0] || hi[1] < lo[1] || hi[2] < lo[2]; }
+};
+
+// Every cell of the lattice.
+CellBox all_cells(const NodeLattice& lattice);
+
+// The box around the held blocks of `lattice` that some camera's view
+// pyramid (its four corner rays from its position) reaches within
+// `margin_nodes` spacings, grown by the margin and clipped to the lattice;
+// all_cells for a periodic lattice (whose rays wrap around). Empty when no
+// camera sees any block.
+CellBox cells_in_view(const NodeLattice& lattice, const std::vector<const PinholeCamera*>& cameras,
+                      int margin_nodes);
+
+}  // namespace obscura
