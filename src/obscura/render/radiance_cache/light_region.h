@@ -26,11 +26,12 @@ struct CellBox {
 // Every cell of the lattice.
 CellBox all_cells(const NodeLattice& lattice);
 
-// The box around the held blocks of `lattice` that some camera's view
-// pyramid (its four corner rays from its position) reaches within
-// `margin_nodes` spacings, grown by the margin and clipped to the lattice;
-// all_cells for a periodic lattice (whose rays wrap around). Empty when no
-// camera sees any block.
+// The box around the cells of `lattice`'s held blocks that some camera's
+// view pyramid (its four corner rays from its position) may reach, tested
+// by blocks and then by parts of 2³ cells (each grown by half a spacing),
+// grown by `margin_nodes` cells and clipped to the lattice; all_cells for a
+// periodic lattice (whose rays wrap around). Empty when no camera sees any
+// block.
 CellBox cells_in_view(const NodeLattice& lattice, const std::vector<const PinholeCamera*>& cameras,
                       int margin_nodes);
 
