@@ -25,6 +25,7 @@ std::array<Vec3, 4> side_normals(const PinholeCamera& camera) {
 
 CellBox all_cells(const NodeLattice& lattice) {
   CellBox box;
+  box.lo = {0, 0, 0};
   for (int a = 0; a < 3; ++a) box.hi[a] = lattice.dims()[a] - 2;
   return box;
 }
@@ -34,8 +35,6 @@ CellBox cells_in_view(const NodeLattice& lattice, const std::vector<const Pinhol
   if (lattice.periodic()) return all_cells(lattice);
   const double h = lattice.spacing_m();
   CellBox box;
-  box.lo = lattice.dims();
-  box.hi = {-1, -1, -1};
   for (const PinholeCamera* camera : cameras) {
     const std::array<Vec3, 4> normal = side_normals(*camera);
     const Vec3 apex = camera->position();
@@ -65,13 +64,16 @@ CellBox cells_in_view(const NodeLattice& lattice, const std::vector<const Pinhol
                                          first[1] + kPart * (p / kParts % kParts),
                                          first[2] + kPart * (p / (kParts * kParts))};
         if (!may_see(part, kPart)) continue;
+        CellBox grown;
         for (int a = 0; a < 3; ++a) {
-          box.lo[a] = std::min(box.lo[a], part[a] - margin_nodes);
-          box.hi[a] = std::max(box.hi[a], part[a] + kPart - 1 + margin_nodes);
+          grown.lo[a] = part[a] - margin_nodes;
+          grown.hi[a] = part[a] + kPart - 1 + margin_nodes;
         }
+        box.add(grown);
       }
     }
   }
+  if (box.empty()) return box;
   const CellBox all = all_cells(lattice);
   for (int a = 0; a < 3; ++a) {
     box.lo[a] = std::max(box.lo[a], all.lo[a]);

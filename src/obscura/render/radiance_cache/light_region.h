@@ -8,7 +8,9 @@
 // not depend on where a walk starts, and a node's estimate reads only the
 // cells within `margin_nodes` of it (docs/physics.md, "Only where the sensors
 // look").
+#include <algorithm>
 #include <array>
+#include <limits>
 #include <vector>
 
 #include "obscura/render/lattice/node_lattice.h"
@@ -18,9 +20,24 @@ namespace obscura {
 
 // Cells lo[a] … hi[a] (inclusive) along each lattice axis; a cell (i, j, k)
 // spans lattice coordinates [i, i + 1] × [j, j + 1] × [k, k + 1].
+// Default: empty.
 struct CellBox {
-  std::array<int, 3> lo{0, 0, 0}, hi{-1, -1, -1};
+  static constexpr int kNone = std::numeric_limits<int>::max();
+  std::array<int, 3> lo{kNone, kNone, kNone}, hi{-1, -1, -1};
   bool empty() const { return hi[0] < lo[0] || hi[1] < lo[1] || hi[2] < lo[2]; }
+  long long count() const {
+    return empty() ? 0
+                   : static_cast<long long>(hi[0] - lo[0] + 1) * (hi[1] - lo[1] + 1) *
+                         (hi[2] - lo[2] + 1);
+  }
+  // Grows to the bounds of this box and `other` (an empty one adds nothing).
+  void add(const CellBox& other) {
+    if (other.empty()) return;
+    for (int a = 0; a < 3; ++a) {
+      lo[a] = std::min(lo[a], other.lo[a]);
+      hi[a] = std::max(hi[a], other.hi[a]);
+    }
+  }
 };
 
 // Every cell of the lattice.

@@ -179,17 +179,13 @@ void RadianceCache::choose_light_cells(const Scene& scene, std::size_t nodes,
   // those; one more against off-by-one (docs/physics.md, "Only where the
   // sensors look").
   const int margin = scene.settings.radiance_cache.kernel_radius_nodes + 2;
-  sun_cells_.lo = lattice_.dims();
-  sun_cells_.hi = {-1, -1, -1};
+  sun_cells_ = CellBox{};
   for (std::size_t u = 0; u < nodes; ++u) {
     std::vector<const PinholeCamera*> cameras;
     for (const int s : node_sensors[u])
       cameras.push_back(&scene.sensors[static_cast<std::size_t>(s)].camera);
     light_cells_[u] = cells_in_view(lattice_, cameras, margin);
-    for (int a = 0; a < 3; ++a) {
-      sun_cells_.lo[a] = std::min(sun_cells_.lo[a], light_cells_[u].lo[a]);
-      sun_cells_.hi[a] = std::max(sun_cells_.hi[a], light_cells_[u].hi[a]);
-    }
+    sun_cells_.add(light_cells_[u]);
   }
 }
 
