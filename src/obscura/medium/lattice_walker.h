@@ -20,7 +20,13 @@ class LatticeWalker {
   OBSCURA_HOST_DEVICE LatticeWalker(const Vec3& o, const Vec3& d, double t_begin, double t_end,
                                     double cell_size, const std::array<int, 3>& lo,
                                     const std::array<int, 3>& hi)
-      : o_(o), d_(d), t_(t_begin), t_end_(t_end), cell_size_(cell_size), lo_(lo), hi_(hi) {
+      : o_{o.x, o.y, o.z},
+        d_{d.x, d.y, d.z},
+        t_(t_begin),
+        t_end_(t_end),
+        cell_size_(cell_size),
+        lo_(lo),
+        hi_(hi) {
     const Vec3 p = o + d * t_begin;
     for (int a = 0; a < 3; ++a) {
       cell_[a] = std::clamp(static_cast<int>(std::floor(p[a] / cell_size)), lo[a], hi[a]);
@@ -64,7 +70,9 @@ class LatticeWalker {
     return std::max((plane - o_[a]) / d_[a], t_);
   }
 
-  Vec3 o_, d_;
+  // As arrays, not Vec3: indexed by a runtime axis, Vec3's operator[] is a
+  // chain of selects on the hot path of every step.
+  std::array<double, 3> o_, d_;
   double t_, t_end_, cell_size_;
   std::array<int, 3> lo_, hi_;
   std::array<int, 3> cell_{}, step_{};

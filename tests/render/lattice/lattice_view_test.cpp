@@ -1,11 +1,13 @@
 // The march's view of a lattice (render/lattice/lattice_view.h) places points
-// and finds blocks exactly as its NodeLattice does.
+// and finds blocks exactly as its NodeLattice does; the march's trilinear
+// interpolation (render/lattice/lattice_view_march.h) is trilinear.
 #include "obscura/render/lattice/lattice_view.h"
 
 #include <gtest/gtest.h>
 
 #include "medium/test_grids.h"
 #include "obscura/medium/grid_medium.h"
+#include "obscura/render/lattice/lattice_view_march.h"
 #include "obscura/render/lattice/lattice_volume.h"
 
 namespace obscura {
@@ -33,6 +35,39 @@ TEST(LatticeView, PlacesPointsAndFindsBlocksAsItsLattice) {
   EXPECT_EQ(view.domain.lo, volume.domain().lo);
   EXPECT_EQ(view.domain.hi, volume.domain().hi);
   for (int a = 0; a < 3; ++a) EXPECT_EQ(view.dims[a], lattice.dims()[a]);
+}
+
+// The march's two forms of the trilinear interpolation (corner weights and
+// lerps, four floats at a time) against the trilinear formula in double, to
+// float rounding; the weights give a corner's record exactly at that corner.
+TEST(LatticeMarchInterpolation, IsTrilinearAndExactAtTheCorners) {
+  constexpr int kStride = 8;
+  Rng rng(7, 0);
+  std::vector<float> records(8 * kStride);
+  const std::array<std::size_t, 8> slot = {0, 1, 2, 3, 4, 5, 6, 7};
+  for (int trial = 0; trial < 500; ++trial) {
+    for (float& r : records) r = static_cast<float>(100.0 * rng.uniform() - 20.0);
+    float f[3];
+    for (int a = 0; a < 3; ++a)
+      f[a] = trial < 8 ? static_cast<float>(trial >> a & 1) : static_cast<float>(rng.uniform());
+    float out[kStride], by_lerps[kStride];
+    lattice_march_detail::interpolate<kStride>(records.data(), slot,
+                                               lattice_march_detail::corner_weights(f), out);
+    lattice_march_detail::interpolate_lerps<kStride>(records.data(), slot, f, by_lerps);
+    for (int i = 0; i < kStride; ++i) {
+      double exact = 0.0;
+      for (int c = 0; c < 8; ++c) {
+        double w = 1.0;
+        for (int a = 0; a < 3; ++a) w *= (c >> a & 1) ? f[a] : 1.0 - f[a];
+        exact += w * records[c * kStride + i];
+      }
+      EXPECT_NEAR(out[i], exact, 1e-5 * 120.0) << "trial " << trial;
+      EXPECT_NEAR(by_lerps[i], exact, 1e-5 * 120.0) << "trial " << trial;
+      if (trial < 8) {
+        EXPECT_EQ(out[i], records[trial * kStride + i]);
+      }
+    }
+  }
 }
 
 }  // namespace

@@ -27,7 +27,9 @@ TEST(LightRegion, EveryCellACameraRayCrossesIsInsideTheMargin) {
       const CellBox box = cells_in_view(lattice, {&camera}, kMargin);
       ASSERT_FALSE(box.empty());
       // Head-on, the view is a small part of the cloud's width.
-      if (from.y < -39 && fov_deg < 5) EXPECT_LT(box.count(), all.count() / 2) << "fov " << fov_deg;
+      if (from.y < -39 && fov_deg < 5) {
+        EXPECT_LT(box.count(), all.count() / 2) << "fov " << fov_deg;
+      }
       EXPECT_LT(box.count(), all.count()) << "fov " << fov_deg;
       // Rays through random image points, walked through the lattice's
       // cells (those with a held block: the others hold no light).

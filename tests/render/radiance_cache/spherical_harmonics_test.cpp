@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <functional>
 #include <numbers>
 
@@ -77,6 +78,36 @@ TEST(SphericalHarmonics, TruncationKeepsTheLowerBands) {
   spherical_harmonics(Vec3(0, 0, 1), y);
   EXPECT_NEAR(hg_convolved(c.data(), y, 0.6, 0), 2.0 * y[0], 1e-12);
   EXPECT_NEAR(hg_convolved(c.data(), y, 0.6, 1), 2.0 * y[0] + 0.6 * y[2], 1e-7);
+}
+
+// The CPU march's float form (HgConvolution) against hg_convolved, for every
+// degree, random directions, g and coefficients: to float rounding (1e-6 of
+// the sum of the terms' magnitudes); the coefficients beyond the degree, in
+// the group of four it reads, change nothing.
+TEST(SphericalHarmonics, TheFloatConvolutionAgreesWithTheDoubleOne) {
+  std::uint64_t state = 12345;
+  auto uniform = [&] {  // a small LCG: the test needs spread, not quality
+    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+    return static_cast<double>(state >> 11) * 0x1.0p-53;
+  };
+  for (int degree = 0; degree <= kMaxShDegree; ++degree)
+    for (int trial = 0; trial < 200; ++trial) {
+      const Vec3 w = normalize(Vec3(uniform() - 0.5, uniform() - 0.5, uniform() - 0.5));
+      std::array<double, kMaxShCoefficients> y;
+      spherical_harmonics(w, y);
+      std::array<float, kMaxShCoefficients + 4> c{};
+      const int count = sh_coefficient_count(degree);
+      for (int i = 0; i < count; ++i) c[i] = static_cast<float>(100.0 * (uniform() - 0.3));
+      for (int i = count; i < HgConvolution::readable(degree); ++i) c[i] = 1e3f;
+      const double g = 2.0 * uniform() - 1.0;
+      double magnitude = 0.0;
+      for (int i = 0; i < count; ++i) magnitude += std::abs(y[i] * c[i]);
+      std::array<float, kMaxShCoefficients + 4> exact = c;
+      for (int i = count; i < static_cast<int>(exact.size()); ++i) exact[i] = 0.0f;
+      EXPECT_NEAR(HgConvolution(y, degree)(c.data(), g), hg_convolved(exact.data(), y, g, degree),
+                  1e-6 * magnitude)
+          << "degree " << degree << ", g " << g;
+    }
 }
 
 // The forward peak the radiance cache splats towards a sensor

@@ -109,16 +109,23 @@ OBSCURA_HOST_DEVICE inline void corner_slots(const std::array<std::size_t, 8>& f
 
 // The trilinear interpolation, at fractions f (0…1 per axis) across the
 // cell whose corners' records (x fastest) are at `slot`, of the first Count
-// floats of records Stride floats apart: lerps along x, then y, then z, four
-// floats at a time (GCC/Clang vector extensions on the CPU, SSE on any
-// x86-64; 16-byte loads on a device, where records are 16-byte aligned:
-// Stride is a multiple of 4 and device buffers start 256-byte aligned).
-// Seven lerps are fewer operations than weighting the eight corners, and
-// their chain (three lerps) is what the march waits on.
+// floats of records Stride floats apart, four floats at a time (GCC/Clang
+// vector extensions on the CPU, SSE on any x86-64; 16-byte loads on a
+// device, where records are 16-byte aligned: Stride is a multiple of 4 and
+// device buffers start 256-byte aligned), in one of two forms with the same
+// code on the CPU and a device (so that their bits agree):
+//  * interpolate_lerps, for records of one group of four (the medium's
+//    channels): lerps along x, then y, then z, seven of them, whose chain
+//    (three lerps) is what the march waits on;
+//  * interpolate with the eight corners' weights, computed once per point
+//    (corner_weights) and shared by every group and spectral node the point
+//    reads, for longer records (the radiance cache's): per group 8 multiplies
+//    and 7 adds summed pairwise, against the lerps' 7 subtractions, 7
+//    multiplies and 7 adds (callgrind, docs/performance.md).
 template <int Stride, int Count = Stride>
-OBSCURA_HOST_DEVICE inline void interpolate(const float* records,
-                                            const std::array<std::size_t, 8>& slot,
-                                            const float f[3], float* out) {
+OBSCURA_HOST_DEVICE inline void interpolate_lerps(const float* records,
+                                                  const std::array<std::size_t, 8>& slot,
+                                                  const float f[3], float* out) {
   static_assert(Stride % 4 == 0 && Count % 4 == 0 && Count <= Stride);
 #if OBSCURA_DEVICE_CODE
   auto lerp = [](const float4& a, const float4& b, float t) {
@@ -151,8 +158,79 @@ OBSCURA_HOST_DEVICE inline void interpolate(const float* records,
 #endif
 }
 
-// The fractions across `cell` (0…1 per axis) of lattice point o + t d.
-OBSCURA_HOST_DEVICE inline void cell_fractions(const Vec3& o, const Vec3& d, double t,
+// The eight corners' weights at fractions f, corner c = x + 2y + 4z.
+struct CornerWeights {
+  float w[8];
+};
+
+OBSCURA_HOST_DEVICE inline CornerWeights corner_weights(const float f[3]) {
+  const float gx = 1.0f - f[0], gy = 1.0f - f[1], gz = 1.0f - f[2];
+  const float xy[4] = {gx * gy, f[0] * gy, gx * f[1], f[0] * f[1]};
+  CornerWeights out;
+  for (int c = 0; c < 4; ++c) {
+    out.w[c] = xy[c] * gz;
+    out.w[c + 4] = xy[c] * f[2];
+  }
+  return out;
+}
+
+template <int Stride, int Count = Stride>
+OBSCURA_HOST_DEVICE inline void interpolate(const float* records,
+                                            const std::array<std::size_t, 8>& slot,
+                                            const CornerWeights& weights, float* out) {
+  static_assert(Stride % 4 == 0 && Count % 4 == 0 && Count <= Stride);
+  const float* w = weights.w;
+#if OBSCURA_DEVICE_CODE
+  for (int q = 0; q < Count / 4; ++q) {
+    float4 r[8];
+    for (int c = 0; c < 8; ++c)
+      r[c] = __ldg(reinterpret_cast<const float4*>(records + slot[c] * Stride) + q);
+    auto sum = [&](float float4::*lane) {
+      return ((w[0] * r[0].*lane + w[1] * r[1].*lane) + (w[2] * r[2].*lane + w[3] * r[3].*lane)) +
+             ((w[4] * r[4].*lane + w[5] * r[5].*lane) + (w[6] * r[6].*lane + w[7] * r[7].*lane));
+    };
+    out[4 * q] = sum(&float4::x);
+    out[4 * q + 1] = sum(&float4::y);
+    out[4 * q + 2] = sum(&float4::z);
+    out[4 * q + 3] = sum(&float4::w);
+  }
+#else
+  using Float4 = float __attribute__((vector_size(16)));
+  Float4 wc[8];
+  for (int c = 0; c < 8; ++c) wc[c] = Float4{} + w[c];
+  for (int q = 0; q < Count / 4; ++q) {
+    Float4 r[8];
+    for (int c = 0; c < 8; ++c) std::memcpy(&r[c], records + slot[c] * Stride + 4 * q, sizeof r[c]);
+    const Float4 v = ((wc[0] * r[0] + wc[1] * r[1]) + (wc[2] * r[2] + wc[3] * r[3])) +
+                     ((wc[4] * r[4] + wc[5] * r[5]) + (wc[6] * r[6] + wc[7] * r[7]));
+    std::memcpy(out + 4 * q, &v, sizeof v);
+  }
+#endif
+}
+
+// Interpolates a whole record of Stride floats at fractions f in the form
+// for its length (above).
+template <int Stride>
+struct RecordInterpolation {
+  static constexpr bool kByWeights = Stride > 4;
+  CornerWeights weights;
+  const float* f;
+  OBSCURA_HOST_DEVICE explicit RecordInterpolation(const float fractions[3]) : f(fractions) {
+    if constexpr (kByWeights) weights = corner_weights(fractions);
+  }
+  OBSCURA_HOST_DEVICE void operator()(const float* records, const std::array<std::size_t, 8>& slot,
+                                      float* out) const {
+    if constexpr (kByWeights)
+      interpolate<Stride>(records, slot, weights, out);
+    else
+      interpolate_lerps<Stride>(records, slot, f, out);
+  }
+};
+
+// The fractions across `cell` (0…1 per axis) of lattice point o + t d (o
+// and d as arrays: Vec3's operator[] with a loop's index is a chain of
+// selects).
+OBSCURA_HOST_DEVICE inline void cell_fractions(const double o[3], const double d[3], double t,
                                                const std::array<int, 3>& cell, float f[3]) {
   for (int a = 0; a < 3; ++a) {
     // Clamped against rounding, in the forms that compile to maxsd and
@@ -230,11 +308,14 @@ OBSCURA_HOST_DEVICE std::uint64_t march_lattice_ray(const LatticeView& lattice,
   double* sigma_t[3] = {values_at[0], values_at[1], values_at[2]};
   double* emissivity[3] = {values_at[3], values_at[4], values_at[5]};
   float frac[3];
-  float values[Stride];
+  // Zero beyond the record: a CPU source may read its last channels in
+  // whole groups of four (HgConvolution::readable).
+  float values[Stride + 4] = {};
   std::uint64_t cells = 0;
   double previous_end = -1.0;
   const Vec3& o = lray.origin;
   const Vec3& dir = lray.direction;
+  const double o3[3] = {o.x, o.y, o.z}, d3[3] = {dir.x, dir.y, dir.z};
   constexpr int kSteep = d::steep_channel<Source>();
   // The steep channel's value at the cell's entry and exit, per node.
   double steep_at[2][MaxNodes] = {};
@@ -242,9 +323,10 @@ OBSCURA_HOST_DEVICE std::uint64_t march_lattice_ray(const LatticeView& lattice,
   // slot p of the arrays.
   auto evaluate = [&](const std::array<int, 3>& cell, const std::array<std::size_t, 8>& slot,
                       double t, int p, double* steep) OBSCURA_ALWAYS_INLINE {
-    d::cell_fractions(o, dir, t, cell, frac);
+    d::cell_fractions(o3, d3, t, cell, frac);
+    const d::RecordInterpolation<Stride> interpolate(frac);
     for (int j = 0; j < n; ++j) {
-      d::interpolate<Stride>(records[j], slot, frac, values);
+      interpolate(records[j], slot, values);
       source.point(j, values, sigma_t[p][j], emissivity[p][j]);
       if constexpr (kSteep >= 0)
         if (steep) steep[j] = values[kSteep];
@@ -307,8 +389,9 @@ OBSCURA_HOST_DEVICE std::uint64_t march_lattice_ray(const LatticeView& lattice,
             sub_st[0] = sub_st[2];
             sub_em[0] = sub_em[2];
             for (int p = 1; p < 3; ++p) {
-              d::cell_fractions(o, dir, p == 1 ? 0.5 * (a + b) : b, cell, frac);
-              d::interpolate<Stride>(records[j], slot, frac, values);
+              d::cell_fractions(o3, d3, p == 1 ? 0.5 * (a + b) : b, cell, frac);
+              const d::RecordInterpolation<Stride> interpolate_piece(frac);
+              interpolate_piece(records[j], slot, values);
               source.point(j, values, sub_st[p], sub_em[p]);
             }
             const double* pst[3] = {sub_st, sub_st + 1, sub_st + 2};
@@ -349,23 +432,24 @@ OBSCURA_HOST_DEVICE double lattice_optical_depth(const LatticeView& lattice, con
   float values[record::kMediumStride];
   const Vec3& o = lray.origin;
   const Vec3& dir = lray.direction;
+  const double o3[3] = {o.x, o.y, o.z}, d3[3] = {dir.x, dir.y, dir.z};
   double sigma_t[3] = {0.0, 0.0, 0.0};  // at the cell's entry, middle and exit
   double previous_end = -1.0;
-  d::for_each_cell(lattice, o, dir, t_begin, t_end,
-                   [&](const std::array<int, 3>& cell, double t0, double t1,
-                       const std::array<std::size_t, 8>& slot) OBSCURA_ALWAYS_INLINE {
-                     const bool reuse = t0 == previous_end;
-                     if (reuse) sigma_t[0] = sigma_t[2];
-                     const double ts[3] = {t0, 0.5 * (t0 + t1), t1};
-                     for (int p = reuse ? 1 : 0; p < 3; ++p) {
-                       d::cell_fractions(o, dir, ts[p], cell, frac);
-                       d::interpolate<Stride, record::kMediumStride>(records, slot, frac, values);
-                       sigma_t[p] =
-                           static_cast<double>(values[record::kSigmaA]) + values[record::kSigmaS];
-                     }
-                     tau += (t1 - t0) / 6.0 * (sigma_t[0] + 4.0 * sigma_t[1] + sigma_t[2]);
-                     previous_end = t1;
-                   });
+  d::for_each_cell(
+      lattice, o, dir, t_begin, t_end,
+      [&](const std::array<int, 3>& cell, double t0, double t1,
+          const std::array<std::size_t, 8>& slot) OBSCURA_ALWAYS_INLINE {
+        const bool reuse = t0 == previous_end;
+        if (reuse) sigma_t[0] = sigma_t[2];
+        const double ts[3] = {t0, 0.5 * (t0 + t1), t1};
+        for (int p = reuse ? 1 : 0; p < 3; ++p) {
+          d::cell_fractions(o3, d3, ts[p], cell, frac);
+          d::interpolate_lerps<Stride, record::kMediumStride>(records, slot, frac, values);
+          sigma_t[p] = static_cast<double>(values[record::kSigmaA]) + values[record::kSigmaS];
+        }
+        tau += (t1 - t0) / 6.0 * (sigma_t[0] + 4.0 * sigma_t[1] + sigma_t[2]);
+        previous_end = t1;
+      });
   return tau;
 }
 

@@ -13,6 +13,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "obscura/core/fast_exp.h"
 #include "obscura/core/host_device.h"
 #include "obscura/core/planck_table.h"
 #include "obscura/core/vec3.h"
@@ -76,6 +77,9 @@ struct CacheLight {
   const double* sun_irradiance = nullptr;  // per node j, W m⁻² µm⁻¹ (0 without a sun)
   int sh_degree = 0;
   int peak = -1;  // index from record::kTauSun (RadianceCache::peak_channel); −1: none
+#if !OBSCURA_DEVICE_CODE
+  HgConvolution convolution;  // the CPU's form of hg_convolved with y
+#endif
 
   // For a camera ray along unit `direction`; `to_sun` is the unit direction
   // towards the sun when `sun`.
@@ -86,10 +90,14 @@ struct CacheLight {
         sh_degree(degree),
         peak(peak_channel) {
     spherical_harmonics(-direction, y);
+#if !OBSCURA_DEVICE_CODE
+    convolution = HgConvolution(y, degree);
+#endif
   }
 
   // J at node j from the point's g and light channels (`light` from
-  // record::kTauSun on, interpolated). Not clamped at zero: the photon
+  // record::kTauSun on, interpolated; on the CPU readable up to
+  // HgConvolution::readable(sh_degree) harmonics). Not clamped at zero: the photon
   // estimate is linear in the photons, so its noise (which can make a
   // truncated expansion dip below zero) averages out along the ray.
   OBSCURA_HOST_DEVICE double in_scattered(int j, double g, const float* light) const {
@@ -98,8 +106,12 @@ struct CacheLight {
     const double tau = light[0], visibility = light[1];
     double j_in = 0.0;
     if (visibility > 0.0)
-      j_in += sun_irradiance[j] * cache_hg(g, mu_sun) * visibility * std::exp(-tau);
+      j_in += sun_irradiance[j] * cache_hg(g, mu_sun) * visibility * fast_exp(-tau);
+#if OBSCURA_DEVICE_CODE
     j_in += hg_convolved(light + 2, y, g, sh_degree);
+#else
+    j_in += convolution(light + 2, g);
+#endif
     return peak >= 0 ? j_in + light[peak] : j_in;
   }
 };

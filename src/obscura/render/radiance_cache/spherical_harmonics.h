@@ -11,6 +11,7 @@
 // (docs/physics.md, "The radiance cache"). Both run on a CUDA device too
 // (core/host_device.h).
 #include <array>
+#include <cstring>
 
 #include "obscura/core/host_device.h"
 #include "obscura/core/vec3.h"
@@ -70,5 +71,48 @@ OBSCURA_HOST_DEVICE inline double hg_convolved(const float* c,
   }
   return result;
 }
+
+#if !OBSCURA_DEVICE_CODE
+// hg_convolved for the many points of one camera ray, whose direction (the
+// harmonics y) is fixed: Σ_i g^{l(i)} y_i c_i, four coefficients at a time in
+// float, each group of four times its lanes' powers of g (coefficient i has
+// degree l(i) = ⌊√i⌋: lanes 0–3 hold degrees 0, 1, 1, 1; 4–7 degree 2; 8–11
+// degrees 2, 3, 3, 3; 12–15 degree 3). What the CPU's camera march spends on
+// the cache's multiple scattering (docs/performance.md); a CUDA device keeps
+// hg_convolved. Agrees with it to float rounding (relative 1e-6 of the terms'
+// magnitudes; tests/render/radiance_cache/spherical_harmonics_test.cpp).
+class HgConvolution {
+ public:
+  HgConvolution() = default;
+  HgConvolution(const std::array<double, kMaxShCoefficients>& y, int degree)
+      : groups_((sh_coefficient_count(degree) + 3) / 4) {
+    for (int i = 0; i < sh_coefficient_count(degree); ++i) y_[i] = static_cast<float>(y[i]);
+  }
+
+  // Floats of `c` read: the coefficients rounded up to a whole group of four
+  // (the reader's buffer must hold them; y is zero beyond the coefficients,
+  // so finite values there add nothing).
+  static constexpr int readable(int degree) { return (sh_coefficient_count(degree) + 3) / 4 * 4; }
+
+  double operator()(const float* c, double g) const {
+    using Float4 = float __attribute__((vector_size(16)));
+    const float g1 = static_cast<float>(g), g2 = g1 * g1, g3 = g2 * g1;
+    const Float4 power[4] = {
+        {1.0f, g1, g1, g1}, {g2, g2, g2, g2}, {g2, g3, g3, g3}, {g3, g3, g3, g3}};
+    Float4 sum = {};
+    for (int q = 0; q < groups_; ++q) {
+      Float4 y_q, c_q;
+      std::memcpy(&y_q, y_ + 4 * q, sizeof y_q);
+      std::memcpy(&c_q, c + 4 * q, sizeof c_q);
+      sum += power[q] * y_q * c_q;
+    }
+    return static_cast<double>((sum[0] + sum[1]) + (sum[2] + sum[3]));
+  }
+
+ private:
+  float y_[kMaxShCoefficients] = {};  // y_i, 0 beyond the degree's coefficients
+  int groups_ = 0;
+};
+#endif
 
 }  // namespace obscura
