@@ -6,10 +6,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <cstdint>
 #include <functional>
 #include <numbers>
 
+#include "obscura/core/rng.h"
 #include "obscura/render/radiance_cache/cache_source.h"
 
 namespace obscura {
@@ -85,11 +85,8 @@ TEST(SphericalHarmonics, TruncationKeepsTheLowerBands) {
 // the sum of the terms' magnitudes); the coefficients beyond the degree, in
 // the group of four it reads, change nothing.
 TEST(SphericalHarmonics, TheFloatConvolutionAgreesWithTheDoubleOne) {
-  std::uint64_t state = 12345;
-  auto uniform = [&] {  // a small LCG: the test needs spread, not quality
-    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
-    return static_cast<double>(state >> 11) * 0x1.0p-53;
-  };
+  Rng rng(12345, 0);
+  auto uniform = [&] { return rng.uniform(); };
   for (int degree = 0; degree <= kMaxShDegree; ++degree)
     for (int trial = 0; trial < 200; ++trial) {
       const Vec3 w = normalize(Vec3(uniform() - 0.5, uniform() - 0.5, uniform() - 0.5));
