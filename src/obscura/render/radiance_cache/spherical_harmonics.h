@@ -85,7 +85,7 @@ class HgConvolution {
  public:
   HgConvolution() = default;
   HgConvolution(const std::array<double, kMaxShCoefficients>& y, int degree)
-      : groups_((sh_coefficient_count(degree) + 3) / 4) {
+      : groups_(readable(degree) / 4) {
     for (int i = 0; i < sh_coefficient_count(degree); ++i) y_[i] = static_cast<float>(y[i]);
   }
 
