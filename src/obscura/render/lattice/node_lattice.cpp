@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "obscura/core/error.h"
 
@@ -42,6 +43,8 @@ NodeLattice::NodeLattice(const Medium& medium, double spacing_m, double period_m
     // splats' normalisation (two-point Gauss per lattice interval) is exact.
     origin_ = Vec3(0.0, 0.0, b.lo.z);
     dims_ = {per, per, nodes_on(lengths.z, h_)};
+    constexpr double kInf = std::numeric_limits<double>::infinity();
+    medium_support_ = BBox3(Vec3(-kInf, -kInf, 0.0), Vec3(kInf, kInf, lengths.z / h_));
   } else {
     if (frame) {
       rotation_ = frame->placement.rotation;
@@ -53,12 +56,14 @@ NodeLattice::NodeLattice(const Medium& medium, double spacing_m, double period_m
       // the voxel centres.
       origin_ = corner + rotation_ * Vec3(-0.5 * h_, -0.5 * h_, -0.5 * h_);
       dims_ = {nodes_along(lengths.x, h_), nodes_along(lengths.y, h_), nodes_along(lengths.z, h_)};
+      medium_support_ = BBox3(Vec3(0.5, 0.5, 0.5), Vec3(0.5, 0.5, 0.5) + lengths / h_);
     } else {
       // Other media (boxes): nodes on the box's minimum faces, and on the
       // others where the extent is a whole number of spacings (a cube).
       h_ = spacing_m > 0 ? spacing_m : std::max({lengths.x, lengths.y, lengths.z}) / 32.0;
       origin_ = corner;
       dims_ = {nodes_on(lengths.x, h_), nodes_on(lengths.y, h_), nodes_on(lengths.z, h_)};
+      medium_support_ = BBox3(Vec3(0.0, 0.0, 0.0), lengths / h_);
     }
   }
   if (!(h_ > 0.0 && std::isfinite(h_)))

@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "obscura/core/bbox.h"
 #include "obscura/core/mat3.h"
 #include "obscura/core/vec3.h"
 #include "obscura/medium/medium.h"
@@ -71,6 +72,11 @@ class NodeLattice {
                           static_cast<std::size_t>(block_dims_[1]) * static_cast<std::size_t>(bz))];
     return b < 0 ? kNoSlot : static_cast<std::size_t>(b) * kBlockNodes;
   }
+  // The box outside which the medium is zero, in lattice coordinates (node
+  // units): the medium's box (a grid cloud's own, rotated with it), without
+  // bounds across a periodic lattice's x and y. Its faces are where σs may
+  // step to zero between two nodes.
+  const BBox3& medium_support() const { return medium_support_; }
   // The origin's world position (node (0, 0, 0)).
   const Vec3& origin() const { return origin_; }
   // Lattice coordinates of a world point (node units).
@@ -87,6 +93,7 @@ class NodeLattice {
   void allocate_blocks(const Medium& medium);
 
   Vec3 origin_;
+  BBox3 medium_support_;
   Mat3 rotation_ = Mat3::identity(), rotation_t_ = Mat3::identity();
   double h_ = 1.0;
   std::array<int, 3> dims_{1, 1, 1};

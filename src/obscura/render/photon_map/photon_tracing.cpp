@@ -103,6 +103,20 @@ struct Launch {
   bool from_sky = false;     // an environment photon from the sky (not from a surface)
 };
 
+// The environment photons of one line, one per piece of it between the
+// surfaces it crosses in the medium's box (PhotonSources::environment).
+struct EnvironmentLaunches {
+  static constexpr int kMaxPieces = 8;  // beyond, the line's further pieces are dropped
+  std::array<Launch, kMaxPieces> launch;
+  int count = 0;
+  void add(const Launch& l) { launch[static_cast<std::size_t>(count++)] = l; }
+  double power() const {
+    double sum = 0;
+    for (int i = 0; i < count; ++i) sum += launch[static_cast<std::size_t>(i)].power;
+    return sum;
+  }
+};
+
 // A photon's journey after launch: free flights by delta tracking, stored at
 // scattering events (all of them with store_first_scatter, else from the
 // second on for sun and environment photons), Russian roulette by the
@@ -242,7 +256,7 @@ class PhotonSources {
     MediumPoint scratch;
     for (int i = 0; i < kEnvironmentPilot; ++i) {
       Rng rng(settings.seed, stream_base + (1ull << 38) + static_cast<std::uint64_t>(i));
-      sum += environment(rng, scratch).power;
+      sum += environment(rng, scratch).power();
     }
     est.environment_w_um = sum / kEnvironmentPilot;
     est.emission_w_um = lattice_.estimated_power() * emission_share_;
@@ -268,29 +282,51 @@ class PhotonSources {
     return l;
   }
 
-  // Environment photon (power for one photon; the caller divides by N_env):
-  // direction uniform over the sphere, starting behind the disc on the first
-  // surface or at the sky.
-  Launch environment(Rng& rng, MediumPoint& scratch) const {
-    if (period_ > 0.0) return periodic_environment(rng);
+  // Environment photons of one line (each with the power for one line; the
+  // caller divides by N_env): a direction d uniform over the sphere and a
+  // point p on the disc of radius R across d pick the line x = p + s d. The
+  // radiance travelling along it changes at every surface it crosses: each
+  // stretch between two crossings carries what leaves the surface at its
+  // start, or the sky's radiance where nothing is behind it. So the part of
+  // the line in the medium's box is cut at the surfaces it crosses there, and
+  // each piece launches its own photon, from the first surface behind the
+  // piece's middle (the piece's start) or from beyond the sphere for the
+  // sky. (One photon from the first surface behind p, as before 2026-12-06,
+  // missed every piece but p's: a line whose p lies below the ground never
+  // carried the ground's light into a cloud above it, nor the sky's into it
+  // before it reaches the ground. On a thin box lying on a black ground in
+  // equilibrium with the sky, J read 16 % low; docs/physics.md.) A line
+  // that misses the box keeps its one photon from behind p, which meets no
+  // medium, so that without surfaces the launched power is the
+  // environment's through the disc.
+  EnvironmentLaunches environment(Rng& rng, MediumPoint& scratch) const {
+    EnvironmentLaunches out;
+    if (period_ > 0.0) {
+      out.add(periodic_environment(rng));
+      return out;
+    }
     const Vec3 d = sample_uniform_sphere(rng.uniform(), rng.uniform());
     const Vec3 p = point_on_disc(sphere_.center, d, sphere_.radius_m, rng);
-    Launch l;
-    SurfaceHit hit;
-    const Ray back{p, -d};
-    double radiance = 0;
-    if (intersect_surfaces(scene_.surfaces, back, 0.0, std::numeric_limits<double>::infinity(),
-                           hit)) {
-      const Vec3 s = back.at(hit.t);
-      radiance = surface_radiance(scene_, hit, s, node_, rng, scratch);
-      l.ray = Ray{s + hit.normal * 1e-9, d};
-    } else {
-      radiance = scene_.sky.radiance(-d, node_.wavelength_um);
-      l.ray = Ray{p - d * (1.01 * sphere_.radius_m), d};
-      l.from_sky = true;
+    const double before_p = 1.01 * sphere_.radius_m;
+    const Ray line{p - d * before_p, d};
+    double t_in = 0.0, t_out = std::numeric_limits<double>::infinity();
+    if (!scene_.medium->bounds().intersect(line, t_in, t_out) || !(t_out > t_in)) {
+      out.add(from_behind(line, before_p, rng, scratch));
+      return out;
     }
-    l.power = radiance * kFourPi * disc_area_;
-    return l;
+    // Pieces shorter than this are dropped: a line through a corner of two
+    // faces (a mesh's edge) crosses twice at one point.
+    const double shortest = 1e-9 * (t_out - t_in);
+    double start = t_in;
+    while (out.count < EnvironmentLaunches::kMaxPieces) {
+      SurfaceHit hit;
+      const bool crosses = intersect_surfaces(scene_.surfaces, line, start, t_out, hit);
+      const double end = crosses ? hit.t : t_out;
+      if (end - start > shortest) out.add(from_behind(line, 0.5 * (start + end), rng, scratch));
+      if (!crosses) break;
+      start = end;
+    }
+    return out;
   }
 
   // Emission photon (power for one of n_em): a point drawn from the lattice,
@@ -310,6 +346,30 @@ class PhotonSources {
   }
 
  private:
+  // The photon carrying the radiance that travels along `line` through its
+  // point at parameter s: from the first surface behind that point, with the
+  // surface's radiance, or from the line's start (beyond the sphere) with
+  // the sky's.
+  Launch from_behind(const Ray& line, double s, Rng& rng, MediumPoint& scratch) const {
+    const Vec3& d = line.direction;
+    Launch l;
+    SurfaceHit hit;
+    const Ray back{line.at(s), -d};
+    double radiance = 0;
+    if (intersect_surfaces(scene_.surfaces, back, 0.0, std::numeric_limits<double>::infinity(),
+                           hit)) {
+      const Vec3 x = back.at(hit.t);
+      radiance = surface_radiance(scene_, hit, x, node_, rng, scratch);
+      l.ray = Ray{x + hit.normal * 1e-9, d};
+    } else {
+      radiance = scene_.sky.radiance(-d, node_.wavelength_um);
+      l.ray = line;
+      l.from_sky = true;
+    }
+    l.power = radiance * kFourPi * disc_area_;
+    return l;
+  }
+
   // A point uniform on the period square at height z.
   Vec3 on_period_square(Rng& rng, double z) const {
     const double x = rng.uniform() * period_, y = rng.uniform() * period_;
@@ -437,10 +497,16 @@ TracedPhotons trace_photons(const Scene& scene, const SpectralNode& node, std::u
         source = kSun;
         l = sources.sun(rng, n_sun);
       } else if (i < n_sun + n_env) {
-        source = kEnvironment;
-        l = sources.environment(rng, scratch);
-        l.power /= n_env;
-        l.store_first = settings.store_first_environment_scatter;
+        EnvironmentLaunches pieces = sources.environment(rng, scratch);
+        for (int k = 0; k < pieces.count; ++k) {
+          Launch& piece = pieces.launch[static_cast<std::size_t>(k)];
+          piece.power /= n_env;
+          piece.store_first = settings.store_first_environment_scatter;
+          launched[c][kEnvironment] += piece.power;
+          if (piece.power > 0)
+            trace_photon(scene, node, lambda, piece, settings, rng, scratch, stored[c]);
+        }
+        continue;
       } else {
         if (out.launched_count[kEmission] == 0) break;
         source = kEmission;

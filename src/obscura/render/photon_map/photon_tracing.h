@@ -13,9 +13,11 @@
 //    of the medium's bounding-sphere radius R across the beam; each photon
 //    carries E_λ π R² / N_sun;
 //  * the environment (sky and surfaces): a direction d uniform over the
-//    sphere and a point p on the disc of radius R across d; the photon leaves
-//    the first surface behind p (with that surface's radiance,
-//    render/direct_lighting.h) or the sky, carrying L π R² 4π / N_env;
+//    sphere and a point p on the disc of radius R across d pick a line; the
+//    line's part in the medium's box is cut at the surfaces it crosses, and
+//    each piece launches a photon from the first surface behind it (with
+//    that surface's radiance, render/direct_lighting.h) or from the sky,
+//    carrying L π R² 4π / N_env;
 //  * volume emission 4π σa B(T): points drawn from a lattice of cells over the
 //    medium's box by the emission at each cell's centre (plus a defensive 1 %
 //    of the mean, so every cell can be drawn), uniform within the cell,

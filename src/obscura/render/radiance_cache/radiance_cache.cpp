@@ -297,17 +297,30 @@ std::vector<float> RadianceCache::kernel_scattering(const Scene& scene) const {
       overlap_moment[a] = axis_overlaps(r, lattice_.dims()[a], 0.5, cells[a] + 0.5, 1);
     }
   }
-  // Otherwise (steps at a box's faces, clouds on other grids) by two-point
-  // Gauss–Legendre per lattice interval and axis over the kernel's support:
-  // exact for σs trilinear within each interval, and converging as the
-  // spacing shrinks where it is not.
-  std::vector<double> gauss_u, gauss_w;
-  for (int i = -r; i < r; ++i)
-    for (const double x : {-1.0 / std::sqrt(3.0), 1.0 / std::sqrt(3.0)}) {
-      const double u = i + 0.5 + 0.5 * x;
-      gauss_u.push_back(u);
-      gauss_w.push_back(0.5 * std::max(0.0, 1.0 - std::abs(u) / r) / r);
+  // Otherwise (boxes, clouds on other grids) by two-point Gauss–Legendre per
+  // lattice interval and axis over the kernel's support, each interval
+  // clipped to the medium's box (σs steps to zero at its faces, which need
+  // not lie on nodes: a box 1 m tall at a spacing of 0.3125 m put both points
+  // of its top interval above the face, and J read 8.5 % high in that box;
+  // docs/physics.md): exact for σs trilinear within each clipped interval
+  // (the tent is linear there), and converging as the spacing shrinks where
+  // it is not. Per node and axis: the points' offsets from the node (node
+  // units) and weights.
+  const BBox3& support = lattice_.medium_support();
+  auto axis_points = [&](int axis, int node, std::vector<double>& u, std::vector<double>& w) {
+    u.clear();
+    w.clear();
+    for (int i = -r; i < r; ++i) {
+      const double u0 = std::max<double>(i, support.lo[axis] - node),
+                   u1 = std::min<double>(i + 1, support.hi[axis] - node);
+      if (!(u1 > u0)) continue;
+      for (const double x : {-1.0 / std::sqrt(3.0), 1.0 / std::sqrt(3.0)}) {
+        const double at = 0.5 * (u0 + u1) + 0.5 * (u1 - u0) * x;
+        u.push_back(at);
+        w.push_back(0.5 * (u1 - u0) * std::max(0.0, 1.0 - std::abs(at) / r) / r);
+      }
     }
+  };
   const std::size_t per_slot = static_cast<std::size_t>(ns) * kKernelMoments;
   for_blocks_shared(
       *processes_, lattice_.block_count(), scene.settings.threads, out,
@@ -315,6 +328,7 @@ std::vector<float> RadianceCache::kernel_scattering(const Scene& scene) const {
         MediumPoint point;
         // Per sample: ∫ K σs dV and its first moments along the lattice's axes.
         std::vector<double> sum(per_slot);
+        std::array<std::vector<double>, 3> gauss_u, gauss_w;
         for (std::size_t slot = block * NodeLattice::kBlockNodes;
              slot < (block + 1) * NodeLattice::kBlockNodes; ++slot) {
           if (!lattice_.slot_inside(slot)) continue;
@@ -349,13 +363,18 @@ std::vector<float> RadianceCache::kernel_scattering(const Scene& scene) const {
           } else {
             const Vec3 p0 = lattice_.slot_position(slot);
             const double h = lattice_.spacing_m();
-            for (std::size_t c = 0; c < gauss_u.size(); ++c)
-              for (std::size_t b = 0; b < gauss_u.size(); ++b)
-                for (std::size_t a = 0; a < gauss_u.size(); ++a) {
-                  const Vec3 offset(gauss_u[a] * h, gauss_u[b] * h, gauss_u[c] * h);
+            const int n[3] = {ni, nj, nk};
+            for (int axis = 0; axis < 3; ++axis)
+              axis_points(axis, n[axis], gauss_u[axis], gauss_w[axis]);
+            const auto& [ux, uy, uz] = gauss_u;
+            const auto& [wx, wy, wz] = gauss_w;
+            for (std::size_t c = 0; c < uz.size(); ++c)
+              for (std::size_t b = 0; b < uy.size(); ++b)
+                for (std::size_t a = 0; a < ux.size(); ++a) {
+                  const Vec3 offset(ux[a] * h, uy[b] * h, uz[c] * h);
                   medium.coefficients_at(p0 + lattice_.rotation() * offset, point);
-                  const double w = gauss_w[a] * gauss_w[b] * gauss_w[c];
-                  add(w, {w * gauss_u[a], w * gauss_u[b], w * gauss_u[c]},
+                  const double w = wx[a] * wy[b] * wz[c];
+                  add(w, {w * ux[a], w * uy[b], w * uz[c]},
                       [&](int k) { return point.sigma_s[k]; });
                 }
           }
