@@ -25,12 +25,12 @@ void bind_validation(py::module_& m) {
          const std::string& reference, bool pure_photon_map) {
         ValidationRequest r;
         r.name = name;
-        const auto m = parse_render_method(method);
-        if (!m)
+        const auto parsed = parse_render_method(method);
+        if (!parsed)
           throw InputError("", "--method",
                            "unknown render method '" + method +
                                "' (expected one of: " + render_method_names() + ")");
-        r.settings.method = *m;
+        r.settings.method = *parsed;
         r.settings.photon_map.pure = pure_photon_map;
         if (seed) r.settings.seed = *seed;
         if (threads) r.settings.threads = *threads;

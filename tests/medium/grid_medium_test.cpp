@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "medium/test_grids.h"
@@ -48,6 +49,36 @@ TEST(GridMedium, SegmentCubicsEqualPointEvaluation) {
     }
     EXPECT_GT(checked, 1000);
   }
+}
+
+// Two samples alone (what tracking at one wavelength reads) are the same
+// bits as coefficients_at gives them, with the temperature, at points inside
+// the grid, in its outer half voxels and outside it.
+TEST(GridMedium, TwoSamplesEqualTheWholePointsBits) {
+  const auto grid = testing::random_grid({7, 5, 9}, 4, 21, rotation_from_euler_deg({20, -35, 70}));
+  const GridMedium medium(grid, 3);
+  const BBox3 box = medium.bounds();
+  Rng rng(11, 0);
+  MediumPoint all, two;
+  int inside = 0;
+  for (int i = 0; i < 2000; ++i) {
+    // Over a box 20 % larger than the bounds: some points are outside.
+    const Vec3 e = box.extent() * 1.2;
+    const Vec3 p = box.center() + Vec3(e.x * (rng.uniform() - 0.5), e.y * (rng.uniform() - 0.5),
+                                       e.z * (rng.uniform() - 0.5));
+    const int first = static_cast<int>(rng.uniform() * 4), second = std::min(3, first + 1);
+    medium.coefficients_at(p, all);
+    medium.coefficients_of_samples(p, first, second, two);
+    for (const int s : {first, second}) {
+      EXPECT_EQ(all.sigma_a[s], two.sigma_a[s]) << i;
+      EXPECT_EQ(all.sigma_s[s], two.sigma_s[s]) << i;
+      EXPECT_EQ(all.g[s], two.g[s]) << i;
+    }
+    EXPECT_EQ(all.temperature_k, two.temperature_k) << i;
+    inside += all.temperature_k > 0.0;
+  }
+  EXPECT_GT(inside, 200);  // 290: the bounds hold the rotated grid
+  EXPECT_LT(inside, 1900);
 }
 
 // Optical depth from the cubics against brute-force integration of the point

@@ -103,6 +103,42 @@ void corner_weight_cubics(const std::array<double, 3>& alpha, const std::array<d
 
 }  // namespace
 
+namespace {
+
+// The trilinear reconstruction's 8 voxels around index-space point u and
+// their weights; false outside the grid's box (plus the outer half voxels).
+bool trilinear_corners(const VoxelGrid& g, const Vec3& u, std::array<std::size_t, 8>& idx,
+                       std::array<double, 8>& w) {
+  const GridDims& d = g.dims();
+  if (!(u.x >= -0.5 && u.x <= d.nx - 0.5 && u.y >= -0.5 && u.y <= d.ny - 0.5 && u.z >= -0.5 &&
+        u.z <= d.nz - 0.5))
+    return false;
+  const AxisLerp ax = axis_lerp(u.x, d.nx), ay = axis_lerp(u.y, d.ny), az = axis_lerp(u.z, d.nz);
+  for (int c = 0; c < 8; ++c) {
+    idx[c] = g.index((c & 1) ? ax.i1 : ax.i0, (c & 2) ? ay.i1 : ay.i0, (c & 4) ? az.i1 : az.i0);
+    w[c] = ((c & 1) ? ax.f : 1 - ax.f) * ((c & 2) ? ay.f : 1 - ay.f) * ((c & 4) ? az.f : 1 - az.f);
+  }
+  return true;
+}
+
+// σa, σs and g (weighted by scattering, so that mixing clear and scattering
+// voxels keeps the scatterers' phase function) of spectral sample s.
+void sample_coefficients(const VoxelGrid& g, int s, const std::array<std::size_t, 8>& idx,
+                         const std::array<double, 8>& w, MediumPoint& out) {
+  double sa = 0, ss = 0, gs = 0;
+  for (int c = 0; c < 8; ++c) {
+    sa += w[c] * g.sigma_a(s)[idx[c]];
+    const double ssc = w[c] * g.sigma_s(s)[idx[c]];
+    ss += ssc;
+    gs += ssc * g.g(s)[idx[c]];
+  }
+  out.sigma_a[s] = sa;
+  out.sigma_s[s] = ss;
+  out.g[s] = ss > 0 ? gs / ss : 0.0;
+}
+
+}  // namespace
+
 void GridMedium::coefficients_at(const Vec3& p, MediumPoint& out) const {
   const VoxelGrid& g = *grid_;
   const int ns = g.spectral_count();
@@ -110,32 +146,37 @@ void GridMedium::coefficients_at(const Vec3& p, MediumPoint& out) const {
   out.sigma_s.assign(ns, 0.0);
   out.g.assign(ns, 0.0);
   out.temperature_k = 0.0;
-  const Vec3 u = g.placement().world_to_index(p);
-  const GridDims& d = g.dims();
-  if (!(u.x >= -0.5 && u.x <= d.nx - 0.5 && u.y >= -0.5 && u.y <= d.ny - 0.5 && u.z >= -0.5 &&
-        u.z <= d.nz - 0.5))
-    return;
-  const AxisLerp ax = axis_lerp(u.x, d.nx), ay = axis_lerp(u.y, d.ny), az = axis_lerp(u.z, d.nz);
   std::array<std::size_t, 8> idx;
   std::array<double, 8> w;
-  for (int c = 0; c < 8; ++c) {
-    idx[c] = g.index((c & 1) ? ax.i1 : ax.i0, (c & 2) ? ay.i1 : ay.i0, (c & 4) ? az.i1 : az.i0);
-    w[c] = ((c & 1) ? ax.f : 1 - ax.f) * ((c & 2) ? ay.f : 1 - ay.f) * ((c & 4) ? az.f : 1 - az.f);
-  }
-  for (int s = 0; s < ns; ++s) {
-    double sa = 0, ss = 0, gs = 0;
-    for (int c = 0; c < 8; ++c) {
-      sa += w[c] * g.sigma_a(s)[idx[c]];
-      const double ssc = w[c] * g.sigma_s(s)[idx[c]];
-      ss += ssc;
-      gs += ssc * g.g(s)[idx[c]];
+  if (!trilinear_corners(g, g.placement().world_to_index(p), idx, w)) return;
+  for (int s = 0; s < ns; ++s) sample_coefficients(g, s, idx, w, out);
+  double t = 0;
+  for (int c = 0; c < 8; ++c) t += w[c] * g.temperature()[idx[c]];
+  out.temperature_k = t;
+}
+
+// Two of the samples only: a tracking step or an emission lattice at one
+// wavelength reads no more (docs/performance.md).
+void GridMedium::coefficients_of_samples(const Vec3& p, int first, int second,
+                                         MediumPoint& out) const {
+  const VoxelGrid& g = *grid_;
+  const std::size_t ns = static_cast<std::size_t>(g.spectral_count());
+  out.sigma_a.resize(ns);
+  out.sigma_s.resize(ns);
+  out.g.resize(ns);
+  std::array<std::size_t, 8> idx;
+  std::array<double, 8> w;
+  if (!trilinear_corners(g, g.placement().world_to_index(p), idx, w)) {
+    for (const int s : {first, second}) {
+      out.sigma_a[static_cast<std::size_t>(s)] = 0.0;
+      out.sigma_s[static_cast<std::size_t>(s)] = 0.0;
+      out.g[static_cast<std::size_t>(s)] = 0.0;
     }
-    out.sigma_a[s] = sa;
-    out.sigma_s[s] = ss;
-    // g weighted by scattering, so that mixing clear and scattering voxels
-    // keeps the scatterers' phase function.
-    out.g[s] = ss > 0 ? gs / ss : 0.0;
+    out.temperature_k = 0.0;
+    return;
   }
+  sample_coefficients(g, first, idx, w, out);
+  if (second != first) sample_coefficients(g, second, idx, w, out);
   double t = 0;
   for (int c = 0; c < 8; ++c) t += w[c] * g.temperature()[idx[c]];
   out.temperature_k = t;

@@ -30,6 +30,8 @@ class GridMedium final : public Medium {
   BBox3 bounds() const override { return bounds_; }
   const std::vector<double>& wavelengths_um() const override { return grid_->wavelengths_um(); }
   void coefficients_at(const Vec3& p, MediumPoint& out) const override;
+  void coefficients_of_samples(const Vec3& p, int first, int second,
+                               MediumPoint& out) const override;
   void trace_segments(const Ray& ray, double t_min, double t_max,
                       const SegmentVisitor& visit) const override;
   void trace_majorants(const Ray& ray, double t_min, double t_max,

@@ -86,6 +86,18 @@ class Medium {
   virtual const std::vector<double>& wavelengths_um() const = 0;
   // Coefficients at a world point; zero coefficients (and 0 K) outside.
   virtual void coefficients_at(const Vec3& p, MediumPoint& out) const = 0;
+  // σa, σs and g at a world point of spectral samples `first` and `second`
+  // only (the two a SpectralLerp reads), and the temperature: the same values
+  // coefficients_at gives them; out's other samples are left unspecified.
+  // For what reads one wavelength: the inner loop of delta and ratio
+  // tracking, the photons' emission lattice. The default evaluates every
+  // sample; a grid overrides it.
+  virtual void coefficients_of_samples(const Vec3& p, int first, int second,
+                                       MediumPoint& out) const {
+    (void)first;
+    (void)second;
+    coefficients_at(p, out);
+  }
   // Visits, in order of increasing t, the segments of ray ∩ [t_min, t_max]
   // where the medium may be non-zero. `ray.direction` must be unit length.
   virtual void trace_segments(const Ray& ray, double t_min, double t_max,

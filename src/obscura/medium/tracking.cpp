@@ -31,7 +31,7 @@ bool walk_tentative_collisions(const Medium& medium, const Ray& ray, double t_be
   while (true) {
     t += exponential_step(rng, rate);
     if (t >= t_end) return true;
-    medium.coefficients_at(ray.at(t), scratch);
+    medium.coefficients_of_samples(ray.at(t), lambda.sample0, lambda.sample1, scratch);
     const double sigma_t = lambda(scratch.sigma_a.data()) + lambda(scratch.sigma_s.data());
     if (!visit(t, sigma_t)) return false;
   }
@@ -55,6 +55,9 @@ std::optional<double> sample_free_flight(const Medium& medium, const Ray& ray, d
                                        return false;
                                      });
   });
+  // The walk evaluated only the lerp's two samples: the whole point for the
+  // caller (the collision's albedo, phase function, every node's values).
+  if (hit) medium.coefficients_at(ray.at(*hit), scratch);
   return hit;
 }
 

@@ -46,7 +46,7 @@ class EmissionLattice {
     MediumPoint point;
     double sum = 0;
     for (std::size_t c = 0; c < count; ++c) {
-      medium.coefficients_at(center(c), point);
+      medium.coefficients_of_samples(center(c), lambda.sample0, lambda.sample1, point);
       f[c] = kFourPi * lambda(point.sigma_a.data()) * node.planck(point.temperature_k);
       sum += f[c];
     }
@@ -335,7 +335,7 @@ class PhotonSources {
     Launch l;
     double pdf = 0;
     const Vec3 x = lattice_.sample(rng, &pdf);
-    scene_.medium->coefficients_at(x, scratch);
+    scene_.medium->coefficients_of_samples(x, lambda_.sample0, lambda_.sample1, scratch);
     const double f =
         kFourPi * lambda_(scratch.sigma_a.data()) * node_.planck(scratch.temperature_k);
     l.power = f / (pdf * n_em);
