@@ -115,6 +115,34 @@ TEST_F(HeightfieldSurface, TiltedPlaneHitsAtTheClosedForm) {
   }
 }
 
+// What lies below a terrain is inside its solid, where no light travels
+// (Surface::encloses: the environment photons launch none there): for a
+// heightfield as for the ground plane; a mesh not taken as terrain encloses
+// nothing it does not know; a box its inside.
+TEST_F(HeightfieldSurface, ATerrainEnclosesWhatLiesBelowIt) {
+  const double a = 3.0, b = 0.05, c = -0.125;
+  auto z = [&](double x, double y) { return a + b * x + c * y; };
+  const auto h = sampled(5, 7, 1000, 2000, 10, z);
+  MeshSurface mesh("tilted", {290, 1}, heightfield_mesh(h, 1000, 2000, 10, "tilted"));
+  const GroundPlane plane("ground", {290, 1}, 12.5);
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(0, 1);
+  for (int i = 0; i < 200; ++i) {
+    const double x = 1000.5 + 59 * u(rng), y = 2000.5 + 39 * u(rng), dz = 0.01 + 5 * u(rng);
+    mesh.set_terrain(true);
+    EXPECT_TRUE(mesh.encloses({x, y, z(x, y) - dz})) << i;
+    EXPECT_FALSE(mesh.encloses({x, y, z(x, y) + dz})) << i;
+    mesh.set_terrain(false);
+    EXPECT_FALSE(mesh.encloses({x, y, z(x, y) - dz})) << i;
+    EXPECT_TRUE(plane.encloses({x, y, 12.5 - dz})) << i;
+    EXPECT_FALSE(plane.encloses({x, y, 12.5 + dz})) << i;
+  }
+  const BoxSurface box("box", {290, 1}, BBox3({-1, -2, 0}, {1, 2, 3}));
+  EXPECT_TRUE(box.encloses({0.9, -1.9, 2.9}));
+  EXPECT_FALSE(box.encloses({1.1, 0, 1}));
+  EXPECT_FALSE(box.encloses({0, 0, 3}));  // on a face: outside
+}
+
 // Watertight: rays aimed exactly at the grid's vertices and at the middles of
 // its edges and diagonals find the ground there, never slipping through.
 TEST_F(HeightfieldSurface, NoLeaksThroughEdgesAndVertices) {

@@ -101,10 +101,6 @@ void corner_weight_cubics(const std::array<double, 3>& alpha, const std::array<d
   }
 }
 
-}  // namespace
-
-namespace {
-
 // The trilinear reconstruction's 8 voxels around index-space point u and
 // their weights; false outside the grid's box (plus the outer half voxels).
 bool trilinear_corners(const VoxelGrid& g, const Vec3& u, std::array<std::size_t, 8>& idx,

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace obscura {
 
@@ -15,6 +16,23 @@ SurfaceMaterial::SurfaceMaterial(double temperature, double grey_emissivity,
     values.push_back(e);
   }
   emissivity_table = TabulatedSpectrum(std::move(wavelengths), std::move(values));
+}
+
+bool Surface::encloses(const Vec3& p) const {
+  if (!is_terrain()) return false;
+  SurfaceHit hit;
+  return intersect(Ray{p, Vec3(0, 0, 1)}, 0.0, std::numeric_limits<double>::infinity(), hit);
+}
+
+bool BoxSurface::encloses(const Vec3& p) const {
+  return p.x > box_.lo.x && p.x < box_.hi.x && p.y > box_.lo.y && p.y < box_.hi.y &&
+         p.z > box_.lo.z && p.z < box_.hi.z;
+}
+
+bool inside_a_solid(const std::vector<std::unique_ptr<Surface>>& surfaces, const Vec3& p) {
+  for (const auto& s : surfaces)
+    if (s->encloses(p)) return true;
+  return false;
 }
 
 bool GroundPlane::intersect(const Ray& ray, double t_min, double t_max, SurfaceHit& hit) const {

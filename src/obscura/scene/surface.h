@@ -57,6 +57,10 @@ class Surface {
   // (render/radiance_cache/ground_light.h).
   bool is_terrain() const { return terrain_; }
   void set_terrain(bool terrain) { terrain_ = terrain; }
+  // Whether p lies inside the solid this surface bounds, where no light
+  // travels: below a terrain (a vertical ray up from p meets it), inside a
+  // box. False where that is not known (a mesh's inside).
+  virtual bool encloses(const Vec3& p) const;
 
  private:
   std::string name_;
@@ -83,11 +87,15 @@ class BoxSurface final : public Surface {
   BoxSurface(std::string name, SurfaceMaterial m, BBox3 box)
       : Surface(std::move(name), m), box_(box) {}
   bool intersect(const Ray& ray, double t_min, double t_max, SurfaceHit& hit) const override;
+  bool encloses(const Vec3& p) const override;
   const BBox3& box() const { return box_; }
 
  private:
   BBox3 box_;
 };
+
+// Whether p lies inside the solid of any of `surfaces` (Surface::encloses).
+bool inside_a_solid(const std::vector<std::unique_ptr<Surface>>& surfaces, const Vec3& p);
 
 // Nearest hit over all surfaces; hit.surface is the index into `surfaces`.
 bool intersect_surfaces(const std::vector<std::unique_ptr<Surface>>& surfaces, const Ray& ray,
