@@ -291,13 +291,15 @@ class PhotonSources {
   // the line in the medium's box is cut at the surfaces it crosses there, and
   // each piece launches its own photon, from the first surface behind the
   // piece's middle (the piece's start) or from beyond the sphere for the
-  // sky; pieces inside a solid (Surface::encloses) carry no light. (One photon from the first
-  // surface behind p, as before 2026-12-06, missed every piece but p's: a line whose p lies below
-  // the ground never carried the ground's light into a cloud above it, nor the sky's into it before
-  // it reaches the ground. On a thin box lying on a black ground in equilibrium with the sky, J
-  // read 16 % low; docs/physics.md.) A line that misses the box keeps its one photon from behind p,
-  // which meets no medium, so that without surfaces the launched power is the environment's through
-  // the disc.
+  // sky; a piece inside a solid (Surface::encloses) carries no light.
+  // (Before 2026-12-06 one photon came from the first surface behind p,
+  // which missed every piece but p's: a line whose p lies below the ground
+  // never carried the ground's light into a cloud above it, nor the sky's
+  // into it before it reaches the ground. In a thin box lying on a black
+  // ground in equilibrium with the sky, J read 16 % low; docs/physics.md.)
+  // A line that misses the box keeps its one photon from behind p, which
+  // meets no medium, so that without surfaces the launched power is the
+  // environment's through the disc.
   EnvironmentLaunches environment(Rng& rng, MediumPoint& scratch) const {
     EnvironmentLaunches out;
     if (period_ > 0.0) {
