@@ -156,14 +156,21 @@ bool NodeLattice::slot_inside(std::size_t slot) const {
 
 bool NodeLattice::corners(const Vec3& p, std::array<std::size_t, 8>& slot,
                           std::array<double, 8>& w) const {
-  const Vec3 u = to_lattice(p);
+  Vec3 u = to_lattice(p);
   std::array<int, 3> i0;
   std::array<double, 3> f;
   for (int a = 0; a < 3; ++a) {
+    const bool wraps = periodic_ && a < 2;
+    // A point on the lattice's first or last node plane, as a cloud's face
+    // that lies on nodes, may come out of to_lattice a rounding error
+    // outside it: it is on the plane (a camera ray's entry into a box cloud
+    // read no light there; docs/validation.md).
+    constexpr double kOnPlane = 1e-9;
+    if (!wraps && u[a] < 0.0 && u[a] > -kOnPlane) u[a] = 0.0;
+    if (!wraps && u[a] > dims_[a] - 1 && u[a] < dims_[a] - 1 + kOnPlane) u[a] = dims_[a] - 1;
     const double fl = std::floor(u[a]);
     i0[a] = static_cast<int>(fl);
     f[a] = u[a] - fl;
-    const bool wraps = periodic_ && a < 2;
     if (!wraps && (u[a] < 0.0 || u[a] > dims_[a] - 1)) return false;
     if (!wraps && i0[a] == dims_[a] - 1) {  // on the last node
       i0[a] -= 1;

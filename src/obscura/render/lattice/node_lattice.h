@@ -54,7 +54,9 @@ class NodeLattice {
 
   // The 8 nodes around world point p and their trilinear weights; corners in
   // blocks that do not exist get slot kNoSlot (their values count as zero).
-  // False when p lies outside the lattice.
+  // False when p lies outside the lattice (a point within 10⁻⁹ of a spacing
+  // outside its first or last node plane, as a rounding error puts a point
+  // on a box cloud's face, is on the plane).
   static constexpr std::size_t kNoSlot = static_cast<std::size_t>(-1);
   bool corners(const Vec3& p, std::array<std::size_t, 8>& slot, std::array<double, 8>& w) const;
 
