@@ -106,6 +106,30 @@ TEST_P(RadianceCacheFurnace, AConservativeGridCloudIsTheSkysRadiance) {
 
 INSTANTIATE_TEST_SUITE_P(KernelRadius, RadianceCacheFurnace, ::testing::Values(1, 2, 3));
 
+// A conservative box cloud (g 0.5) under a uniform 300 K sky, seen by
+// `camera` in the LWIR at one spectral node through the radiance cache with
+// 4·10⁶ photons; uniform_sky_radiance is that sky's radiance in the band.
+Scene box_under_a_uniform_sky(const PinholeCamera& camera, const BBox3& box, double sigma_s) {
+  Scene scene;
+  Sensor sensor;
+  sensor.name = "cam";
+  sensor.camera = camera;
+  sensor.bands = {Band::preset("lwir")};
+  scene.sensors.push_back(sensor);
+  scene.medium = std::make_shared<HomogeneousMedium>(
+      box, std::vector<double>{10.0}, std::vector<double>{0.0}, std::vector<double>{sigma_s},
+      std::vector<double>{0.5}, 300.0);
+  scene.sky = Sky::blackbody(300.0, true);
+  scene.settings.method = RenderMethod::kRadianceCache;
+  scene.settings.spectral_nodes_per_band = 1;
+  scene.settings.radiance_cache.photons_per_node = 4000000;
+  return scene;
+}
+
+double uniform_sky_radiance() {
+  return BandQuadrature(Band::preset("lwir"), 1, 0.0).blackbody_radiance(300.0);
+}
+
 // The same furnace with a box cloud 1 m tall whose lattice spacing (its
 // largest extent / 32 = 0.3125 m) does not divide its height: the top face
 // lies inside a lattice interval, both of whose Gauss points for ∫ K σs dV
@@ -113,21 +137,11 @@ INSTANTIATE_TEST_SUITE_P(KernelRadius, RadianceCacheFurnace, ::testing::Values(1
 // 8.5 % high there (docs/physics.md). Seen from above and from the side,
 // through optical depths 1 to 10, the cloud must be the sky's radiance.
 TEST(RadianceCacheFurnace, AThinBoxCloudIsTheSkysRadiance) {
-  Scene scene;
-  Sensor sensor;
-  sensor.name = "cam";
-  sensor.camera = PinholeCamera({0, -14, 4}, {0, 0, 0.5}, {0, 0, 1}, 30.0, 24, 12);
-  sensor.bands = {Band::preset("lwir")};
-  scene.sensors.push_back(sensor);
-  scene.medium = std::make_shared<HomogeneousMedium>(
-      BBox3({-5, -5, 0}, {5, 5, 1}), std::vector<double>{10.0}, std::vector<double>{0.0},
-      std::vector<double>{1.0}, std::vector<double>{0.5}, 300.0);
-  scene.sky = Sky::blackbody(300.0, true);
-  scene.settings.method = RenderMethod::kRadianceCache;
-  scene.settings.spectral_nodes_per_band = 1;
-  scene.settings.radiance_cache.photons_per_node = 4000000;
+  Scene scene =
+      box_under_a_uniform_sky(PinholeCamera({0, -14, 4}, {0, 0, 0.5}, {0, 0, 1}, 30.0, 24, 12),
+                              BBox3({-5, -5, 0}, {5, 5, 1}), 1.0);
   const SensorImage img = testing::render_first_sensor(scene, 2, 3);
-  const double l0 = BandQuadrature(Band::preset("lwir"), 1, 0.0).blackbody_radiance(300.0);
+  const double l0 = uniform_sky_radiance();
   double sum = 0.0;
   int cloud = 0;
   for (const float v : img.bands[0].radiance) {
@@ -151,22 +165,12 @@ TEST(RadianceCacheFurnace, AThinBoxCloudIsTheSkysRadiance) {
 // all the light a ray gets comes from its first cell, and the image read
 // −1.35 % (docs/validation.md).
 TEST(RadianceCacheFurnace, AThickBoxSeenFaceOnIsTheSkysRadiance) {
-  Scene scene;
-  Sensor sensor;
-  sensor.name = "cam";
-  sensor.camera = PinholeCamera({0, -50, 1}, {0, 0, 1}, {0, 0, 1}, 2.0, 16, 8);
-  sensor.bands = {Band::preset("lwir")};
-  scene.sensors.push_back(sensor);
-  scene.medium = std::make_shared<HomogeneousMedium>(
-      BBox3({-5, -5, 0}, {5, 5, 2}), std::vector<double>{10.0}, std::vector<double>{0.0},
-      std::vector<double>{4.0}, std::vector<double>{0.5}, 300.0);
-  scene.sky = Sky::blackbody(300.0, true);
-  scene.settings.method = RenderMethod::kRadianceCache;
-  scene.settings.spectral_nodes_per_band = 1;
+  Scene scene =
+      box_under_a_uniform_sky(PinholeCamera({0, -50, 1}, {0, 0, 1}, {0, 0, 1}, 2.0, 16, 8),
+                              BBox3({-5, -5, 0}, {5, 5, 2}), 4.0);
   scene.settings.samples_per_pixel = 4;
-  scene.settings.radiance_cache.photons_per_node = 4000000;
   const SensorImage img = testing::render_first_sensor(scene, 2, 3);
-  const double l0 = BandQuadrature(Band::preset("lwir"), 1, 0.0).blackbody_radiance(300.0);
+  const double l0 = uniform_sky_radiance();
   double sum = 0.0;
   for (const float v : img.bands[0].radiance) sum += v / l0 - 1.0;
   const double mean = sum / static_cast<double>(img.bands[0].radiance.size());
