@@ -133,6 +133,13 @@ void sample_coefficients(const VoxelGrid& g, int s, const std::array<std::size_t
   out.g[s] = ss > 0 ? gs / ss : 0.0;
 }
 
+double trilinear_temperature(const VoxelGrid& g, const std::array<std::size_t, 8>& idx,
+                             const std::array<double, 8>& w) {
+  double t = 0;
+  for (int c = 0; c < 8; ++c) t += w[c] * g.temperature()[idx[c]];
+  return t;
+}
+
 }  // namespace
 
 void GridMedium::coefficients_at(const Vec3& p, MediumPoint& out) const {
@@ -146,9 +153,7 @@ void GridMedium::coefficients_at(const Vec3& p, MediumPoint& out) const {
   std::array<double, 8> w;
   if (!trilinear_corners(g, g.placement().world_to_index(p), idx, w)) return;
   for (int s = 0; s < ns; ++s) sample_coefficients(g, s, idx, w, out);
-  double t = 0;
-  for (int c = 0; c < 8; ++c) t += w[c] * g.temperature()[idx[c]];
-  out.temperature_k = t;
+  out.temperature_k = trilinear_temperature(g, idx, w);
 }
 
 // Two of the samples only: a tracking step or an emission lattice at one
@@ -173,9 +178,7 @@ void GridMedium::coefficients_of_samples(const Vec3& p, int first, int second,
   }
   sample_coefficients(g, first, idx, w, out);
   if (second != first) sample_coefficients(g, second, idx, w, out);
-  double t = 0;
-  for (int c = 0; c < 8; ++c) t += w[c] * g.temperature()[idx[c]];
-  out.temperature_k = t;
+  out.temperature_k = trilinear_temperature(g, idx, w);
 }
 
 void GridMedium::trace_segments(const Ray& ray, double t_min, double t_max,
