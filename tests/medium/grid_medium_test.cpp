@@ -52,14 +52,15 @@ TEST(GridMedium, SegmentCubicsEqualPointEvaluation) {
 }
 
 // Two samples alone (what tracking at one wavelength reads) are the same
-// bits as coefficients_at gives them, with the temperature, at points inside
-// the grid, in its outer half voxels and outside it.
+// bits as coefficients_at gives them, with the temperature, and so are their
+// σa and σs alone (a tentative collision's), at points inside the grid, in
+// its outer half voxels and outside it.
 TEST(GridMedium, TwoSamplesEqualTheWholePointsBits) {
   const auto grid = testing::random_grid({7, 5, 9}, 4, 21, rotation_from_euler_deg({20, -35, 70}));
   const GridMedium medium(grid, 3);
   const BBox3 box = medium.bounds();
   Rng rng(11, 0);
-  MediumPoint all, two;
+  MediumPoint all, two, extinction;
   int inside = 0;
   for (int i = 0; i < 2000; ++i) {
     // Over a box 20 % larger than the bounds: some points are outside.
@@ -69,9 +70,12 @@ TEST(GridMedium, TwoSamplesEqualTheWholePointsBits) {
     const int first = static_cast<int>(rng.uniform() * 4), second = std::min(3, first + 1);
     medium.coefficients_at(p, all);
     medium.coefficients_of_samples(p, first, second, two);
+    medium.extinction_of_samples(p, first, second, extinction);
     for (const int s : {first, second}) {
       EXPECT_EQ(all.sigma_a[s], two.sigma_a[s]) << i;
       EXPECT_EQ(all.sigma_s[s], two.sigma_s[s]) << i;
+      EXPECT_EQ(all.sigma_a[s], extinction.sigma_a[s]) << i;
+      EXPECT_EQ(all.sigma_s[s], extinction.sigma_s[s]) << i;
       EXPECT_EQ(all.g[s], two.g[s]) << i;
     }
     EXPECT_EQ(all.temperature_k, two.temperature_k) << i;
@@ -79,6 +83,69 @@ TEST(GridMedium, TwoSamplesEqualTheWholePointsBits) {
   }
   EXPECT_GT(inside, 200);  // 290: the bounds hold the rotated grid
   EXPECT_LT(inside, 1900);
+}
+
+// A point's coefficients are the trilinear formula written out (std::floor,
+// each corner's weight the product of its axes' factors, the corners summed
+// in order, g weighted by scattering), bit for bit: at random points, at
+// voxel centres (integer index coordinates, where the cell changes), in the
+// outer half voxels (index coordinates in [−½, 0), whose truncation rounds
+// the other way) and on the grid's faces.
+TEST(GridMedium, APointIsTheTrilinearFormulaToTheBit) {
+  const GridDims dims{7, 5, 9};
+  const auto grid = testing::random_grid(dims, 2, 23);
+  GridPlacement unit;  // index coordinates exact in world metres
+  grid->set_placement(unit);
+  const GridMedium medium(grid, 3);
+  auto expected = [&](const Vec3& u, int s, double& sa, double& ss, double& g, double& t) {
+    const double c[3] = {std::floor(u.x), std::floor(u.y), std::floor(u.z)};
+    const double f[3] = {u.x - c[0], u.y - c[1], u.z - c[2]};
+    const int n[3] = {dims.nx, dims.ny, dims.nz};
+    sa = ss = g = t = 0.0;
+    double gs = 0.0;
+    for (int corner = 0; corner < 8; ++corner) {
+      int i[3];
+      double w = 1.0;
+      for (int a = 0; a < 3; ++a) {
+        const bool far = corner >> a & 1;
+        i[a] = std::clamp(static_cast<int>(c[a]) + (far ? 1 : 0), 0, n[a] - 1);
+        w = a == 0 ? (far ? f[a] : 1 - f[a]) : w * (far ? f[a] : 1 - f[a]);
+      }
+      const std::size_t v = grid->index(i[0], i[1], i[2]);
+      sa += w * grid->sigma_a(s)[v];
+      const double ssc = w * grid->sigma_s(s)[v];
+      ss += ssc;
+      gs += ssc * grid->g(s)[v];
+      t += w * grid->temperature()[v];
+    }
+    g = ss > 0 ? gs / ss : 0.0;
+  };
+  Rng rng(5, 0);
+  std::vector<Vec3> points;
+  for (int i = 0; i < 500; ++i)  // anywhere in the box, outer half voxels included
+    points.emplace_back((dims.nx) * rng.uniform() - 0.5, (dims.ny) * rng.uniform() - 0.5,
+                        (dims.nz) * rng.uniform() - 0.5);
+  for (int i = 0; i < 200; ++i)  // voxel centres and the outer half voxels' negative side
+    points.emplace_back(std::floor(dims.nx * rng.uniform()), -0.5 * rng.uniform(),
+                        i % 2 ? std::floor(dims.nz * rng.uniform()) : -0.25);
+  points.emplace_back(-0.5, -0.5, -0.5);
+  points.emplace_back(dims.nx - 0.5, dims.ny - 0.5, dims.nz - 0.5);
+  points.emplace_back(-0.0, 0.0, dims.nz - 1.0);
+  MediumPoint point;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const Vec3& u = points[i];
+    const Vec3 world = unit.index_to_world(u);
+    ASSERT_EQ(unit.world_to_index(world).x, u.x);  // the unit placement is exact
+    medium.coefficients_at(world, point);
+    for (int s = 0; s < 2; ++s) {
+      double sa, ss, g, t;
+      expected(unit.world_to_index(world), s, sa, ss, g, t);
+      EXPECT_EQ(point.sigma_a[s], sa) << i;
+      EXPECT_EQ(point.sigma_s[s], ss) << i;
+      EXPECT_EQ(point.g[s], g) << i;
+      EXPECT_EQ(point.temperature_k, t) << i;
+    }
+  }
 }
 
 // Optical depth from the cubics against brute-force integration of the point

@@ -21,15 +21,19 @@ GridMedium::GridMedium(std::shared_ptr<const VoxelGrid> grid, int block_size)
 namespace {
 
 // Corner voxel indices and the fractional position inside the reconstruction
-// cell that holds index coordinate u along one axis of n voxels.
+// cell that holds index coordinate u along one axis of n voxels; u must lie in
+// [−½, n − ½] (so that the truncation below fits an int). floor by truncation
+// and a correction, which equals std::floor there: x86-64 without SSE4.1 has
+// no rounding instruction, and std::floor was 5 % of a photon tracing's
+// instructions (docs/performance.md).
 struct AxisLerp {
   int i0, i1;
   double f;
 };
 inline AxisLerp axis_lerp(double u, int n) {
-  const double c = std::floor(u);
-  const int ci = static_cast<int>(c);
-  return {std::clamp(ci, 0, n - 1), std::clamp(ci + 1, 0, n - 1), u - c};
+  int ci = static_cast<int>(u);
+  if (ci > u) --ci;
+  return {std::clamp(ci, 0, n - 1), std::clamp(ci + 1, 0, n - 1), u - ci};
 }
 
 // The ray in "cell space" w = index + 1, where reconstruction cell c' spans
@@ -102,7 +106,9 @@ void corner_weight_cubics(const std::array<double, 3>& alpha, const std::array<d
 }
 
 // The trilinear reconstruction's 8 voxels around index-space point u and
-// their weights; false outside the grid's box (plus the outer half voxels).
+// their weights (corner c = x + 2y + 4z, each weight the product x·y·z of its
+// axes' factors in that order); false outside the grid's box (plus the outer
+// half voxels).
 bool trilinear_corners(const VoxelGrid& g, const Vec3& u, std::array<std::size_t, 8>& idx,
                        std::array<double, 8>& w) {
   const GridDims& d = g.dims();
@@ -110,33 +116,50 @@ bool trilinear_corners(const VoxelGrid& g, const Vec3& u, std::array<std::size_t
         u.z <= d.nz - 0.5))
     return false;
   const AxisLerp ax = axis_lerp(u.x, d.nx), ay = axis_lerp(u.y, d.ny), az = axis_lerp(u.z, d.nz);
-  for (int c = 0; c < 8; ++c) {
-    idx[c] = g.index((c & 1) ? ax.i1 : ax.i0, (c & 2) ? ay.i1 : ay.i0, (c & 4) ? az.i1 : az.i0);
-    w[c] = ((c & 1) ? ax.f : 1 - ax.f) * ((c & 2) ? ay.f : 1 - ay.f) * ((c & 4) ? az.f : 1 - az.f);
+  // VoxelGrid::index as a base and one offset per axis.
+  const std::size_t row = static_cast<std::size_t>(d.nx);
+  const std::size_t plane = row * static_cast<std::size_t>(d.ny);
+  const std::size_t base = g.index(ax.i0, ay.i0, az.i0);
+  const std::size_t dx = static_cast<std::size_t>(ax.i1 - ax.i0);
+  const std::size_t dy = row * static_cast<std::size_t>(ay.i1 - ay.i0);
+  const std::size_t dz = plane * static_cast<std::size_t>(az.i1 - az.i0);
+  const double wx[2] = {1 - ax.f, ax.f}, wy[2] = {1 - ay.f, ay.f};
+  const double xy[4] = {wx[0] * wy[0], wx[1] * wy[0], wx[0] * wy[1], wx[1] * wy[1]};
+  const std::size_t oxy[4] = {0, dx, dy, dx + dy};
+  for (int c = 0; c < 4; ++c) {
+    idx[c] = base + oxy[c];
+    idx[c + 4] = base + oxy[c] + dz;
+    w[c] = xy[c] * (1 - az.f);
+    w[c + 4] = xy[c] * az.f;
   }
   return true;
 }
 
-// σa, σs and g (weighted by scattering, so that mixing clear and scattering
-// voxels keeps the scatterers' phase function) of spectral sample s.
-void sample_coefficients(const VoxelGrid& g, int s, const std::array<std::size_t, 8>& idx,
+// σa, σs and, with kWithG, g (weighted by scattering, so that mixing clear
+// and scattering voxels keeps the scatterers' phase function) of spectral
+// sample s.
+template <bool kWithG>
+void sample_coefficients(const GridChannels& ch, int s, const std::array<std::size_t, 8>& idx,
                          const std::array<double, 8>& w, MediumPoint& out) {
+  const float* sigma_a = ch.sigma_a[static_cast<std::size_t>(s)];
+  const float* sigma_s = ch.sigma_s[static_cast<std::size_t>(s)];
+  const float* g = ch.g[static_cast<std::size_t>(s)];
   double sa = 0, ss = 0, gs = 0;
   for (int c = 0; c < 8; ++c) {
-    sa += w[c] * g.sigma_a(s)[idx[c]];
-    const double ssc = w[c] * g.sigma_s(s)[idx[c]];
+    sa += w[c] * sigma_a[idx[c]];
+    const double ssc = w[c] * sigma_s[idx[c]];
     ss += ssc;
-    gs += ssc * g.g(s)[idx[c]];
+    if constexpr (kWithG) gs += ssc * g[idx[c]];
   }
   out.sigma_a[s] = sa;
   out.sigma_s[s] = ss;
-  out.g[s] = ss > 0 ? gs / ss : 0.0;
+  if constexpr (kWithG) out.g[s] = ss > 0 ? gs / ss : 0.0;
 }
 
-double trilinear_temperature(const VoxelGrid& g, const std::array<std::size_t, 8>& idx,
+double trilinear_temperature(const GridChannels& ch, const std::array<std::size_t, 8>& idx,
                              const std::array<double, 8>& w) {
   double t = 0;
-  for (int c = 0; c < 8; ++c) t += w[c] * g.temperature()[idx[c]];
+  for (int c = 0; c < 8; ++c) t += w[c] * ch.temperature[idx[c]];
   return t;
 }
 
@@ -152,19 +175,32 @@ void GridMedium::coefficients_at(const Vec3& p, MediumPoint& out) const {
   std::array<std::size_t, 8> idx;
   std::array<double, 8> w;
   if (!trilinear_corners(g, g.placement().world_to_index(p), idx, w)) return;
-  for (int s = 0; s < ns; ++s) sample_coefficients(g, s, idx, w, out);
-  out.temperature_k = trilinear_temperature(g, idx, w);
+  for (int s = 0; s < ns; ++s) sample_coefficients<true>(channels_, s, idx, w, out);
+  out.temperature_k = trilinear_temperature(channels_, idx, w);
 }
 
 // Two of the samples only: a tracking step or an emission lattice at one
-// wavelength reads no more (docs/performance.md).
+// wavelength reads no more, and a tracking step only their σa and σs
+// (docs/performance.md).
 void GridMedium::coefficients_of_samples(const Vec3& p, int first, int second,
                                          MediumPoint& out) const {
+  of_samples(p, first, second, true, out);
+}
+
+void GridMedium::extinction_of_samples(const Vec3& p, int first, int second,
+                                       MediumPoint& out) const {
+  of_samples(p, first, second, false, out);
+}
+
+void GridMedium::of_samples(const Vec3& p, int first, int second, bool whole,
+                            MediumPoint& out) const {
   const VoxelGrid& g = *grid_;
   const std::size_t ns = static_cast<std::size_t>(g.spectral_count());
-  out.sigma_a.resize(ns);
-  out.sigma_s.resize(ns);
-  out.g.resize(ns);
+  if (out.sigma_a.size() != ns || out.sigma_s.size() != ns || out.g.size() != ns) {
+    out.sigma_a.resize(ns);
+    out.sigma_s.resize(ns);
+    out.g.resize(ns);
+  }
   std::array<std::size_t, 8> idx;
   std::array<double, 8> w;
   if (!trilinear_corners(g, g.placement().world_to_index(p), idx, w)) {
@@ -176,9 +212,14 @@ void GridMedium::coefficients_of_samples(const Vec3& p, int first, int second,
     out.temperature_k = 0.0;
     return;
   }
-  sample_coefficients(g, first, idx, w, out);
-  if (second != first) sample_coefficients(g, second, idx, w, out);
-  out.temperature_k = trilinear_temperature(g, idx, w);
+  if (!whole) {
+    sample_coefficients<false>(channels_, first, idx, w, out);
+    if (second != first) sample_coefficients<false>(channels_, second, idx, w, out);
+    return;
+  }
+  sample_coefficients<true>(channels_, first, idx, w, out);
+  if (second != first) sample_coefficients<true>(channels_, second, idx, w, out);
+  out.temperature_k = trilinear_temperature(channels_, idx, w);
 }
 
 void GridMedium::trace_segments(const Ray& ray, double t_min, double t_max,

@@ -32,6 +32,7 @@ class GridMedium final : public Medium {
   void coefficients_at(const Vec3& p, MediumPoint& out) const override;
   void coefficients_of_samples(const Vec3& p, int first, int second,
                                MediumPoint& out) const override;
+  void extinction_of_samples(const Vec3& p, int first, int second, MediumPoint& out) const override;
   void trace_segments(const Ray& ray, double t_min, double t_max,
                       const SegmentVisitor& visit) const override;
   void trace_majorants(const Ray& ray, double t_min, double t_max,
@@ -57,6 +58,9 @@ class GridMedium final : public Medium {
   MajorantGrid majorants_;
   BBox3 bounds_;
   GridChannels channels_;
+
+  // coefficients_of_samples, or with `whole` false extinction_of_samples.
+  void of_samples(const Vec3& p, int first, int second, bool whole, MediumPoint& out) const;
 };
 
 }  // namespace obscura

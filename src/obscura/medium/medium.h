@@ -98,6 +98,14 @@ class Medium {
     (void)second;
     coefficients_at(p, out);
   }
+  // σa and σs alone of spectral samples `first` and `second` at a world
+  // point, the same values coefficients_at gives them; out's g, temperature
+  // and other samples are left unspecified. What a tentative collision of
+  // delta and ratio tracking reads (σt at one wavelength). The default
+  // evaluates the samples' whole point; a grid overrides it.
+  virtual void extinction_of_samples(const Vec3& p, int first, int second, MediumPoint& out) const {
+    coefficients_of_samples(p, first, second, out);
+  }
   // Visits, in order of increasing t, the segments of ray ∩ [t_min, t_max]
   // where the medium may be non-zero. `ray.direction` must be unit length.
   virtual void trace_segments(const Ray& ray, double t_min, double t_max,

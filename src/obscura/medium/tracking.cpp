@@ -31,7 +31,7 @@ bool walk_tentative_collisions(const Medium& medium, const Ray& ray, double t_be
   while (true) {
     t += exponential_step(rng, rate);
     if (t >= t_end) return true;
-    medium.coefficients_of_samples(ray.at(t), lambda.sample0, lambda.sample1, scratch);
+    medium.extinction_of_samples(ray.at(t), lambda.sample0, lambda.sample1, scratch);
     const double sigma_t = lambda(scratch.sigma_a.data()) + lambda(scratch.sigma_s.data());
     if (!visit(t, sigma_t)) return false;
   }

@@ -101,6 +101,52 @@ TEST(PhotonTracing, HeterogeneousEmissionIsUnbiased) {
   EXPECT_NEAR(t.launched.emission_w_um / quadrature, 1.0, 0.005);
 }
 
+// A small emitting cloud in one corner of a large, otherwise empty grid,
+// hotter in places: the emission lattice skips the tiles the majorants leave
+// empty and must still find all of the cloud. The launched power against a
+// fine midpoint quadrature of ∫ 4π σa B(T) dV over the cloud's cells (zero
+// elsewhere); with the cloud's tiles skipped it would launch nothing.
+TEST(PhotonTracing, AnEmitterInACornerOfAnEmptyGridKeepsItsPower) {
+  GridPlacement placement;
+  placement.voxel_size_m = 0.25;
+  auto grid =
+      std::make_shared<VoxelGrid>(GridDims{40, 40, 40}, placement, std::vector<double>{8.0, 12.0});
+  for (int k = 0; k < 40; ++k)
+    for (int j = 0; j < 40; ++j)
+      for (int i = 0; i < 40; ++i) {
+        const std::size_t v = grid->index(i, j, k);
+        grid->temperature()[v] = 280.0f;
+        if (i < 3 || i > 9 || j < 4 || j > 8 || k < 30 || k > 36) continue;
+        grid->sigma_a(0)[v] = 0.5f + 0.01f * static_cast<float>(i + 2 * j + 3 * k);
+        grid->sigma_a(1)[v] = 0.3f;
+        grid->sigma_s(0)[v] = grid->sigma_s(1)[v] = 0.2f;
+        grid->temperature()[v] = 300.0f + static_cast<float>(i * j);
+      }
+  Scene scene;
+  scene.medium = std::make_shared<GridMedium>(grid);
+  const SpectralNodes nodes = nodes_at(10.0, scene.medium->wavelengths_um());
+  const SpectralNode& node = nodes.nodes()[0];
+  const SpectralLerp lambda = node.lerp();
+  // The cloud's reconstruction cells: index coordinates [2, 10] × [3, 9] ×
+  // [29, 37], in steps of an eighth of a voxel.
+  const double step = 0.25 / 8;
+  const Vec3 lo = placement.index_to_world({2, 3, 29});
+  double power = 0;
+  MediumPoint p;
+  for (int k = 0; k < 64; ++k)
+    for (int j = 0; j < 48; ++j)
+      for (int i = 0; i < 64; ++i) {
+        scene.medium->coefficients_at(lo + Vec3(i + 0.5, j + 0.5, k + 0.5) * step, p);
+        power += 4 * kPi * lambda(p.sigma_a.data()) * node.planck(p.temperature_k);
+      }
+  power *= step * step * step;
+  PhotonTracingSettings s;
+  s.photons = 20000;
+  const TracedPhotons t = trace_photons(scene, node, 1ull << 40, s);
+  EXPECT_EQ(t.launched_count[2], 20000);
+  EXPECT_NEAR(t.launched.emission_w_um / power, 1.0, 0.01);
+}
+
 TEST(PhotonTracing, StoresScatteringEventsAsTheFormSays) {
   // A non-scattering cloud stores nothing.
   Scene absorbing = cube_scene(0.5, 0.0, 300.0);

@@ -41,15 +41,34 @@ class EmissionLattice {
     n_[2] = std::clamp(static_cast<int>(std::ceil(e.z / h)), 1, 512);
     cell_ = Vec3(e.x / n_[0], e.y / n_[1], e.z / n_[2]);
     const std::size_t count = static_cast<std::size_t>(n_[0]) * n_[1] * n_[2];
-    std::vector<double> f(count);
+    std::vector<double> f(count, 0.0);
     const SpectralLerp lambda = node.lerp();
     MediumPoint point;
+    // Tiles of kTile³ cells whose centres' box the medium leaves empty
+    // (its majorants) are zero without evaluating a point, as is B(T) where
+    // σa is: the values are the same, and a cloud fills a small part of its
+    // box (docs/performance.md).
+    constexpr int kTile = 8;
+    for (int tk = 0; tk < n_[2]; tk += kTile)
+      for (int tj = 0; tj < n_[1]; tj += kTile)
+        for (int ti = 0; ti < n_[0]; ti += kTile) {
+          const int end[3] = {std::min(ti + kTile, n_[0]), std::min(tj + kTile, n_[1]),
+                              std::min(tk + kTile, n_[2])};
+          const BBox3 centres(center(index(ti, tj, tk)),
+                              center(index(end[0] - 1, end[1] - 1, end[2] - 1)));
+          if (!medium.may_be_nonzero(centres)) continue;
+          for (int k = tk; k < end[2]; ++k)
+            for (int j = tj; j < end[1]; ++j)
+              for (int i = ti; i < end[0]; ++i) {
+                const std::size_t c = index(i, j, k);
+                medium.coefficients_of_samples(center(c), lambda.sample0, lambda.sample1, point);
+                const double sigma_a = lambda(point.sigma_a.data());
+                if (sigma_a != 0.0) f[c] = kFourPi * sigma_a * node.planck(point.temperature_k);
+              }
+        }
+    // Summed in the cells' order, whatever the tiles.
     double sum = 0;
-    for (std::size_t c = 0; c < count; ++c) {
-      medium.coefficients_of_samples(center(c), lambda.sample0, lambda.sample1, point);
-      f[c] = kFourPi * lambda(point.sigma_a.data()) * node.planck(point.temperature_k);
-      sum += f[c];
-    }
+    for (std::size_t c = 0; c < count; ++c) sum += f[c];
     if (!(sum > 0)) return;
     // A defensive 1 % of the mean in every cell: the continuous field may be
     // non-zero in a cell whose centre value is zero.
@@ -75,6 +94,10 @@ class EmissionLattice {
   }
 
  private:
+  std::size_t index(int i, int j, int k) const {
+    return static_cast<std::size_t>(i) +
+           static_cast<std::size_t>(n_[0]) * (j + static_cast<std::size_t>(n_[1]) * k);
+  }
   Vec3 center(std::size_t c) const {
     const int i = static_cast<int>(c % n_[0]), j = static_cast<int>((c / n_[0]) % n_[1]),
               k = static_cast<int>(c / (static_cast<std::size_t>(n_[0]) * n_[1]));
