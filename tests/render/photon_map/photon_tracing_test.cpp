@@ -315,8 +315,8 @@ TEST(PhotonTracing, StoringPastTheMemoryLimitIsAnErrorOnEveryProcess) {
     shared.processes = &group;
     try {
       trace_photons(scene, nodes.nodes()[0], 0, shared);
-    } catch (const InputError& e) {
-      messages[static_cast<std::size_t>(group.rank())] = e.what();
+    } catch (const InputError& error) {
+      messages[static_cast<std::size_t>(group.rank())] = error.what();
     }
   });
   EXPECT_NE(messages[0].find("outgrew the memory limit"), std::string::npos) << messages[0];
