@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 
 #include "obscura/core/tabulated_spectrum.h"
 
@@ -44,7 +45,7 @@ std::optional<double> sample_free_flight(const Medium& medium, const Ray& ray, d
                                          MediumPoint& scratch) {
   // Delta tracking through each majorant piece, restarted at its boundary.
   std::optional<double> hit;
-  medium.trace_majorants(ray, 0.0, t_max, [&](const MajorantSegment& piece) {
+  const auto each_piece = [&](const MajorantSegment& piece) {
     const double majorant = lambda(piece.sigma_majorant);
     if (!(majorant > 0.0)) return true;
     return walk_tentative_collisions(medium, ray, piece.t_begin, piece.t_end, majorant, lambda, rng,
@@ -54,7 +55,11 @@ std::optional<double> sample_free_flight(const Medium& medium, const Ray& ray, d
                                        hit = t;
                                        return false;
                                      });
-  });
+  };
+  // By reference: the lambda's captures outgrow std::function's inline
+  // buffer, and a copy would be a heap allocation per flight (4 % of photon
+  // tracing, docs/performance.md).
+  medium.trace_majorants(ray, 0.0, t_max, std::ref(each_piece));
   // The walk evaluated only the lerp's two samples: the whole point for the
   // caller (the collision's albedo, phase function, every node's values).
   if (hit) medium.coefficients_at(ray.at(*hit), scratch);
@@ -75,7 +80,7 @@ double estimate_transmittance(const Medium& medium, const Ray& ray, double t_max
   // hundreds.
   constexpr double kRouletteBelow = 0.05;
   double transmittance = 1.0;
-  medium.trace_majorants(ray, 0.0, t_max, [&](const MajorantSegment& piece) {
+  const auto each_piece = [&](const MajorantSegment& piece) {
     const double majorant = lambda(piece.sigma_majorant);
     if (!(majorant > 0.0)) return true;
     const double control =
@@ -96,7 +101,8 @@ double estimate_transmittance(const Medium& medium, const Ray& ray, double t_max
                                        }
                                        return transmittance != 0.0;
                                      });
-  });
+  };
+  medium.trace_majorants(ray, 0.0, t_max, std::ref(each_piece));  // by reference, as above
   return transmittance;
 }
 
