@@ -8,15 +8,19 @@
 
 namespace obscura {
 
-GridMedium::GridMedium(std::shared_ptr<const VoxelGrid> grid, int block_size)
-    : grid_(std::move(grid)), majorants_(*grid_, block_size), bounds_(grid_->world_bounds()) {
-  for (int s = 0; s < grid_->spectral_count(); ++s) {
-    channels_.sigma_a.push_back(grid_->sigma_a(s));
-    channels_.sigma_s.push_back(grid_->sigma_s(s));
-    channels_.g.push_back(grid_->g(s));
+GridChannels::GridChannels(const VoxelGrid& grid) : temperature(grid.temperature()) {
+  for (int s = 0; s < grid.spectral_count(); ++s) {
+    sigma_a.push_back(grid.sigma_a(s));
+    sigma_s.push_back(grid.sigma_s(s));
+    g.push_back(grid.g(s));
   }
-  channels_.temperature = grid_->temperature();
 }
+
+GridMedium::GridMedium(std::shared_ptr<const VoxelGrid> grid, int block_size)
+    : grid_(std::move(grid)),
+      majorants_(*grid_, block_size),
+      bounds_(grid_->world_bounds()),
+      channels_(*grid_) {}
 
 namespace {
 
@@ -163,6 +167,34 @@ double trilinear_temperature(const GridChannels& ch, const std::array<std::size_
   return t;
 }
 
+// Spectral samples `first` and `second` at world point p into `out`: with
+// kWhole σa, σs, g and the temperature (coefficients_of_samples), else σa
+// and σs alone (extinction_of_samples).
+template <bool kWhole>
+void samples_at(const VoxelGrid& g, const GridChannels& ch, const Vec3& p, int first, int second,
+                MediumPoint& out) {
+  const std::size_t ns = static_cast<std::size_t>(g.spectral_count());
+  if (out.sigma_a.size() != ns || out.sigma_s.size() != ns || out.g.size() != ns) {
+    out.sigma_a.resize(ns);
+    out.sigma_s.resize(ns);
+    out.g.resize(ns);
+  }
+  std::array<std::size_t, 8> idx;
+  std::array<double, 8> w;
+  if (!trilinear_corners(g, g.placement().world_to_index(p), idx, w)) {
+    for (const int s : {first, second}) {
+      out.sigma_a[static_cast<std::size_t>(s)] = 0.0;
+      out.sigma_s[static_cast<std::size_t>(s)] = 0.0;
+      out.g[static_cast<std::size_t>(s)] = 0.0;
+    }
+    out.temperature_k = 0.0;
+    return;
+  }
+  sample_coefficients<kWhole>(ch, first, idx, w, out);
+  if (second != first) sample_coefficients<kWhole>(ch, second, idx, w, out);
+  if constexpr (kWhole) out.temperature_k = trilinear_temperature(ch, idx, w);
+}
+
 }  // namespace
 
 void GridMedium::coefficients_at(const Vec3& p, MediumPoint& out) const {
@@ -184,42 +216,12 @@ void GridMedium::coefficients_at(const Vec3& p, MediumPoint& out) const {
 // (docs/performance.md).
 void GridMedium::coefficients_of_samples(const Vec3& p, int first, int second,
                                          MediumPoint& out) const {
-  of_samples(p, first, second, true, out);
+  samples_at<true>(*grid_, channels_, p, first, second, out);
 }
 
 void GridMedium::extinction_of_samples(const Vec3& p, int first, int second,
                                        MediumPoint& out) const {
-  of_samples(p, first, second, false, out);
-}
-
-void GridMedium::of_samples(const Vec3& p, int first, int second, bool whole,
-                            MediumPoint& out) const {
-  const VoxelGrid& g = *grid_;
-  const std::size_t ns = static_cast<std::size_t>(g.spectral_count());
-  if (out.sigma_a.size() != ns || out.sigma_s.size() != ns || out.g.size() != ns) {
-    out.sigma_a.resize(ns);
-    out.sigma_s.resize(ns);
-    out.g.resize(ns);
-  }
-  std::array<std::size_t, 8> idx;
-  std::array<double, 8> w;
-  if (!trilinear_corners(g, g.placement().world_to_index(p), idx, w)) {
-    for (const int s : {first, second}) {
-      out.sigma_a[static_cast<std::size_t>(s)] = 0.0;
-      out.sigma_s[static_cast<std::size_t>(s)] = 0.0;
-      out.g[static_cast<std::size_t>(s)] = 0.0;
-    }
-    out.temperature_k = 0.0;
-    return;
-  }
-  if (!whole) {
-    sample_coefficients<false>(channels_, first, idx, w, out);
-    if (second != first) sample_coefficients<false>(channels_, second, idx, w, out);
-    return;
-  }
-  sample_coefficients<true>(channels_, first, idx, w, out);
-  if (second != first) sample_coefficients<true>(channels_, second, idx, w, out);
-  out.temperature_k = trilinear_temperature(channels_, idx, w);
+  samples_at<false>(*grid_, channels_, p, first, second, out);
 }
 
 void GridMedium::trace_segments(const Ray& ray, double t_min, double t_max,

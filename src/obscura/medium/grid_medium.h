@@ -13,8 +13,12 @@
 
 namespace obscura {
 
-// A grid's channel arrays per spectral sample, looked up once.
+// A grid's channel arrays per spectral sample, looked up once (not through
+// VoxelGrid's accessors per voxel: docs/performance.md).
 struct GridChannels {
+  GridChannels() = default;
+  explicit GridChannels(const VoxelGrid& grid);
+
   std::vector<const float*> sigma_a, sigma_s, g;
   const float* temperature = nullptr;
 };
@@ -58,9 +62,6 @@ class GridMedium final : public Medium {
   MajorantGrid majorants_;
   BBox3 bounds_;
   GridChannels channels_;
-
-  // coefficients_of_samples, or with `whole` false extinction_of_samples.
-  void of_samples(const Vec3& p, int first, int second, bool whole, MediumPoint& out) const;
 };
 
 }  // namespace obscura

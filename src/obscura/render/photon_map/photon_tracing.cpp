@@ -49,22 +49,25 @@ class EmissionLattice {
     // σa is: the values are the same, and a cloud fills a small part of its
     // box (docs/performance.md).
     constexpr int kTile = 8;
+    auto fill_tile = [&](const int lo[3], const int end[3]) {
+      for (int k = lo[2]; k < end[2]; ++k)
+        for (int j = lo[1]; j < end[1]; ++j)
+          for (int i = lo[0]; i < end[0]; ++i) {
+            medium.coefficients_of_samples(center(i, j, k), lambda.sample0, lambda.sample1, point);
+            const double sigma_a = lambda(point.sigma_a.data());
+            if (sigma_a != 0.0)
+              f[index(i, j, k)] = kFourPi * sigma_a * node.planck(point.temperature_k);
+          }
+    };
     for (int tk = 0; tk < n_[2]; tk += kTile)
       for (int tj = 0; tj < n_[1]; tj += kTile)
         for (int ti = 0; ti < n_[0]; ti += kTile) {
+          const int lo[3] = {ti, tj, tk};
           const int end[3] = {std::min(ti + kTile, n_[0]), std::min(tj + kTile, n_[1]),
                               std::min(tk + kTile, n_[2])};
-          const BBox3 centres(center(index(ti, tj, tk)),
-                              center(index(end[0] - 1, end[1] - 1, end[2] - 1)));
-          if (!medium.may_be_nonzero(centres)) continue;
-          for (int k = tk; k < end[2]; ++k)
-            for (int j = tj; j < end[1]; ++j)
-              for (int i = ti; i < end[0]; ++i) {
-                const std::size_t c = index(i, j, k);
-                medium.coefficients_of_samples(center(c), lambda.sample0, lambda.sample1, point);
-                const double sigma_a = lambda(point.sigma_a.data());
-                if (sigma_a != 0.0) f[c] = kFourPi * sigma_a * node.planck(point.temperature_k);
-              }
+          if (medium.may_be_nonzero(
+                  BBox3(center(ti, tj, tk), center(end[0] - 1, end[1] - 1, end[2] - 1))))
+            fill_tile(lo, end);
         }
     // Summed in the cells' order, whatever the tiles.
     double sum = 0;
@@ -98,10 +101,12 @@ class EmissionLattice {
     return static_cast<std::size_t>(i) +
            static_cast<std::size_t>(n_[0]) * (j + static_cast<std::size_t>(n_[1]) * k);
   }
-  Vec3 center(std::size_t c) const {
-    const int i = static_cast<int>(c % n_[0]), j = static_cast<int>((c / n_[0]) % n_[1]),
-              k = static_cast<int>(c / (static_cast<std::size_t>(n_[0]) * n_[1]));
+  Vec3 center(int i, int j, int k) const {
     return box_.lo + Vec3((i + 0.5) * cell_.x, (j + 0.5) * cell_.y, (k + 0.5) * cell_.z);
+  }
+  Vec3 center(std::size_t c) const {
+    return center(static_cast<int>(c % n_[0]), static_cast<int>((c / n_[0]) % n_[1]),
+                  static_cast<int>(c / (static_cast<std::size_t>(n_[0]) * n_[1])));
   }
   BBox3 box_;
   int n_[3] = {1, 1, 1};
