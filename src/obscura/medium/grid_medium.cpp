@@ -52,27 +52,66 @@ bool to_cell_space(const VoxelGrid& g, const Ray& ray, double& t_min, double& t_
   return domain.intersect(cell_ray, t_min, t_max);
 }
 
-// Grid indices of the corners of the cell [c0, c1] (per axis).
-void cell_corner_indices(const VoxelGrid& g, const std::array<int, 3>& c0,
-                         const std::array<int, 3>& c1, std::array<std::size_t, 8>& corner_index) {
-  for (int corner = 0; corner < 8; ++corner) {
-    corner_index[corner] = g.index((corner & 1) ? c1[0] : c0[0], (corner & 2) ? c1[1] : c0[1],
-                                   (corner & 4) ? c1[2] : c0[2]);
-  }
+// Whether any corner has σa or σs ≠ 0 at any spectral sample (else the cell
+// is clear).
+bool any_extinction(const GridChannels& ch, const std::array<std::size_t, 8>& corner) {
+  for (std::size_t s = 0; s < ch.sigma_a.size(); ++s)
+    for (int c = 0; c < 8; ++c)
+      if (ch.sigma_a[s][corner[c]] != 0.0f || ch.sigma_s[s][corner[c]] != 0.0f) return true;
+  return false;
 }
 
-// Whether any corner has σa or σs ≠ 0 at any spectral sample (else the cell
-// is clear and gives no segment).
-bool any_extinction(const VoxelGrid& g, int ns, const std::array<std::size_t, 8>& corner_index) {
-  bool any = false;
-  for (int s = 0; s < ns && !any; ++s)
-    for (int corner = 0; corner < 8; ++corner)
-      if (g.sigma_a(s)[corner_index[corner]] != 0.0f ||
-          g.sigma_s(s)[corner_index[corner]] != 0.0f) {
-        any = true;
-        break;
-      }
-  return any;
+// Corner indices of the reconstruction cell `cell` (cell space), clamped at
+// the grid's faces: x fastest, as VoxelGrid::index.
+inline void corner_indices(const std::array<int, 3>& cell, const std::array<int, 3>& n,
+                           std::array<std::size_t, 8>& corner) {
+  const std::size_t x0 = static_cast<std::size_t>(std::clamp(cell[0] - 1, 0, n[0] - 1)),
+                    x1 = static_cast<std::size_t>(std::clamp(cell[0], 0, n[0] - 1));
+  const std::size_t y0 = static_cast<std::size_t>(std::clamp(cell[1] - 1, 0, n[1] - 1)),
+                    y1 = static_cast<std::size_t>(std::clamp(cell[1], 0, n[1] - 1));
+  const std::size_t z0 = static_cast<std::size_t>(std::clamp(cell[2] - 1, 0, n[2] - 1)),
+                    z1 = static_cast<std::size_t>(std::clamp(cell[2], 0, n[2] - 1));
+  const std::size_t nx = static_cast<std::size_t>(n[0]), nxy = nx * static_cast<std::size_t>(n[1]);
+  const std::size_t r00 = y0 * nx + z0 * nxy, r10 = y1 * nx + z0 * nxy, r01 = y0 * nx + z1 * nxy,
+                    r11 = y1 * nx + z1 * nxy;
+  corner = {x0 + r00, x1 + r00, x0 + r10, x1 + r10, x0 + r01, x1 + r01, x0 + r11, x1 + r11};
+}
+
+// Calls visit(cell_ray, cell, corner, t0, t1) for the reconstruction cells
+// along the world ray over [t_min, t_max], in order, that have a positive
+// length and extinction at a corner (majorant blocks holding none are
+// skipped whole); cell_ray is the ray in cell space (to_cell_space), t
+// still in metres. Stops when visit returns false.
+template <class Visit>
+void for_each_cell(const VoxelGrid& g, const MajorantGrid& majorants, const GridChannels& channels,
+                   const Ray& ray, double t_min, double t_max, Visit&& visit) {
+  const GridDims& d = g.dims();
+  const std::array<int, 3> n = {d.nx, d.ny, d.nz};
+  Ray cell_ray;
+  if (!to_cell_space(g, ray, t_min, t_max, cell_ray)) return;
+  const Vec3& o = cell_ray.origin;
+  const Vec3& dir = cell_ray.direction;
+  const int bsize = majorants.block_size();
+  const auto& bd = majorants.block_dims();
+  LatticeWalker blocks(o, dir, t_min, t_max, bsize, {0, 0, 0}, {bd[0] - 1, bd[1] - 1, bd[2] - 1});
+  std::array<int, 3> block, cell_index;
+  std::array<std::size_t, 8> corner;
+  double tb0, tb1, t0, t1;
+  while (blocks.next(block, tb0, tb1)) {
+    if (majorants.max_majorant(block[0], block[1], block[2]) <= 0.0f) continue;
+    std::array<int, 3> lo, hi;
+    for (int a = 0; a < 3; ++a) {
+      lo[a] = block[a] * bsize;
+      hi[a] = std::min(lo[a] + bsize - 1, n[a]);
+    }
+    LatticeWalker cells(o, dir, tb0, tb1, 1.0, lo, hi);
+    while (cells.next(cell_index, t0, t1)) {
+      if (!(t1 > t0)) continue;
+      corner_indices(cell_index, n, corner);
+      if (!any_extinction(channels, corner)) continue;
+      if (!visit(cell_ray, cell_index, corner, t0, t1)) return;
+    }
+  }
 }
 
 // Each corner's trilinear weight is a product of three linear factors in s,
@@ -227,13 +266,7 @@ void GridMedium::extinction_of_samples(const Vec3& p, int first, int second,
 void GridMedium::trace_segments(const Ray& ray, double t_min, double t_max,
                                 const SegmentVisitor& visit) const {
   const VoxelGrid& g = *grid_;
-  const GridDims& d = g.dims();
   const int ns = g.spectral_count();
-  const std::array<int, 3> n = {d.nx, d.ny, d.nz};
-  Ray cell_ray;
-  if (!to_cell_space(g, ray, t_min, t_max, cell_ray)) return;
-  const Vec3& o = cell_ray.origin;
-  const Vec3& dir = cell_ray.direction;
 
   std::vector<Cubic> cubics(2 * static_cast<std::size_t>(ns));
   Cubic* sig_a = cubics.data();
@@ -247,58 +280,38 @@ void GridMedium::trace_segments(const Ray& ray, double t_min, double t_max,
   seg.component_count = 1;
   double previous_end = -1.0;
 
-  const int bsize = majorants_.block_size();
-  const auto& bd = majorants_.block_dims();
-  LatticeWalker blocks(o, dir, t_min, t_max, bsize, {0, 0, 0}, {bd[0] - 1, bd[1] - 1, bd[2] - 1});
-  std::array<int, 3> block;
-  double tb0, tb1;
   std::array<Cubic, 8> basis;
-  std::array<std::size_t, 8> corner_index;
-  while (blocks.next(block, tb0, tb1)) {
-    if (majorants_.max_majorant(block[0], block[1], block[2]) <= 0.0f) continue;
-    std::array<int, 3> lo, hi;
-    for (int a = 0; a < 3; ++a) {
-      lo[a] = block[a] * bsize;
-      hi[a] = std::min(lo[a] + bsize - 1, n[a]);
-    }
-    LatticeWalker cells(o, dir, tb0, tb1, 1.0, lo, hi);
-    std::array<int, 3> cell;
-    double t0, t1;
-    while (cells.next(cell, t0, t1)) {
-      if (!(t1 > t0)) continue;
-      // Reconstruction cell c = cell − 1 in index space; its corners, clamped.
-      std::array<int, 3> c0, c1;
-      std::array<double, 3> alpha, beta;  // local coordinate x(s) = alpha + beta s in [0, 1]
-      for (int a = 0; a < 3; ++a) {
-        const int c = cell[a] - 1;
-        c0[a] = std::clamp(c, 0, n[a] - 1);
-        c1[a] = std::clamp(c + 1, 0, n[a] - 1);
-        alpha[a] = o[a] + t0 * dir[a] - cell[a];
-        beta[a] = dir[a];
-      }
-      cell_corner_indices(g, c0, c1, corner_index);
-      if (!any_extinction(g, ns, corner_index)) continue;
-      corner_weight_cubics(alpha, beta, basis);
-      auto combine = [&](const float* values) {
-        Cubic r;
-        for (int corner = 0; corner < 8; ++corner) {
-          const double v = values[corner_index[corner]];
-          for (int k = 0; k < 4; ++k) r.c[k] += v * basis[corner].c[k];
-        }
-        return r;
-      };
-      for (int s = 0; s < ns; ++s) {
-        sig_a[s] = combine(g.sigma_a(s));
-        sig_s[s] = combine(g.sigma_s(s));
-      }
-      component.temperature = combine(g.temperature());
-      seg.t_begin = t0;
-      seg.t_end = t1;
-      seg.continuous_with_previous = t0 == previous_end;
-      previous_end = t1;
-      if (!visit(seg)) return;
-    }
-  }
+  for_each_cell(g, majorants_, channels_, ray, t_min, t_max,
+                [&](const Ray& cell_ray, const std::array<int, 3>& cell,
+                    const std::array<std::size_t, 8>& corner_index, double t0, double t1) {
+                  const Vec3 &o = cell_ray.origin, &dir = cell_ray.direction;
+                  // Local coordinate x(s) = alpha + beta s in [0, 1] across the
+                  // reconstruction cell c = cell − 1 (index space).
+                  std::array<double, 3> alpha, beta;
+                  for (int a = 0; a < 3; ++a) {
+                    alpha[a] = o[a] + t0 * dir[a] - cell[a];
+                    beta[a] = dir[a];
+                  }
+                  corner_weight_cubics(alpha, beta, basis);
+                  auto combine = [&](const float* values) {
+                    Cubic r;
+                    for (int corner = 0; corner < 8; ++corner) {
+                      const double v = values[corner_index[corner]];
+                      for (int k = 0; k < 4; ++k) r.c[k] += v * basis[corner].c[k];
+                    }
+                    return r;
+                  };
+                  for (int s = 0; s < ns; ++s) {
+                    sig_a[s] = combine(g.sigma_a(s));
+                    sig_s[s] = combine(g.sigma_s(s));
+                  }
+                  component.temperature = combine(g.temperature());
+                  seg.t_begin = t0;
+                  seg.t_end = t1;
+                  seg.continuous_with_previous = t0 == previous_end;
+                  previous_end = t1;
+                  return visit(seg);
+                });
 }
 
 namespace {
@@ -314,13 +327,6 @@ inline void corner_weights(const std::array<double, 3>& f, std::array<double, 8>
   w[5] = f[0] * y0 * f[2];
   w[6] = x0 * f[1] * f[2];
   w[7] = f[0] * f[1] * f[2];
-}
-
-bool any_extinction(const GridChannels& ch, const std::array<std::size_t, 8>& corner) {
-  for (std::size_t s = 0; s < ch.sigma_a.size(); ++s)
-    for (int c = 0; c < 8; ++c)
-      if (ch.sigma_a[s][corner[c]] != 0.0f || ch.sigma_s[s][corner[c]] != 0.0f) return true;
-  return false;
 }
 
 // The coefficients at one point of a cell into `out` (σa, σs, then g when
@@ -347,20 +353,30 @@ double evaluate_point(const GridChannels& ch, int ns, const std::array<std::size
   return temperature;
 }
 
-// Corner indices of the reconstruction cell `cell` (cell space), clamped at
-// the grid's faces: x fastest, as VoxelGrid::index.
-inline void corner_indices(const std::array<int, 3>& cell, const std::array<int, 3>& n,
-                           std::array<std::size_t, 8>& corner) {
-  const std::size_t x0 = static_cast<std::size_t>(std::clamp(cell[0] - 1, 0, n[0] - 1)),
-                    x1 = static_cast<std::size_t>(std::clamp(cell[0], 0, n[0] - 1));
-  const std::size_t y0 = static_cast<std::size_t>(std::clamp(cell[1] - 1, 0, n[1] - 1)),
-                    y1 = static_cast<std::size_t>(std::clamp(cell[1], 0, n[1] - 1));
-  const std::size_t z0 = static_cast<std::size_t>(std::clamp(cell[2] - 1, 0, n[2] - 1)),
-                    z1 = static_cast<std::size_t>(std::clamp(cell[2], 0, n[2] - 1));
-  const std::size_t nx = static_cast<std::size_t>(n[0]), nxy = nx * static_cast<std::size_t>(n[1]);
-  const std::size_t r00 = y0 * nx + z0 * nxy, r10 = y1 * nx + z0 * nxy, r01 = y0 * nx + z1 * nxy,
-                    r11 = y1 * nx + z1 * nxy;
-  corner = {x0 + r00, x1 + r00, x0 + r10, x1 + r10, x0 + r01, x1 + r01, x0 + r11, x1 + r11};
+// The trilinear weights at point o + t dir of the cell-space ray in
+// reconstruction cell `cell`, its fractions clamped against rounding.
+inline void weights_at(const Ray& cell_ray, double t, const std::array<int, 3>& cell,
+                       std::array<double, 8>& w) {
+  std::array<double, 3> f;
+  for (int a = 0; a < 3; ++a)
+    f[a] = std::clamp(cell_ray.origin[a] + t * cell_ray.direction[a] - cell[a], 0.0, 1.0);
+  corner_weights(f, w);
+}
+
+// σa + σs per sample at one point of a cell into `out`: evaluate_point's
+// sums, added as the optical depth's Simpson rule adds them (so its bits).
+void extinction_at_point(const GridChannels& ch, int ns, const std::array<std::size_t, 8>& corner,
+                         const std::array<double, 8>& w, double* out) {
+  for (int s = 0; s < ns; ++s) {
+    const float* sa = ch.sigma_a[s];
+    const float* ss = ch.sigma_s[s];
+    double a = 0, b = 0;
+    for (int c = 0; c < 8; ++c) {
+      a += w[c] * sa[corner[c]];
+      b += w[c] * ss[corner[c]];
+    }
+    out[s] = a + b;
+  }
 }
 
 }  // namespace
@@ -369,13 +385,7 @@ void GridMedium::march_cells(const Ray& ray, double t_min, double t_max,
                              const MarchOptions& options, MarchVisitor& visit) const {
   const bool with_g = options.with_g;
   const VoxelGrid& g = *grid_;
-  const GridDims& d = g.dims();
   const int ns = g.spectral_count();
-  const std::array<int, 3> n = {d.nx, d.ny, d.nz};
-  Ray cell_ray;
-  if (!to_cell_space(g, ray, t_min, t_max, cell_ray)) return;
-  const Vec3& o = cell_ray.origin;
-  const Vec3& dir = cell_ray.direction;
   // Three point buffers (entry, middle, exit), swapped rather than copied
   // when a cell's entry is the previous cell's exit. Per thread: no
   // allocation per ray once warm.
@@ -389,82 +399,69 @@ void GridMedium::march_cells(const Ray& ray, double t_min, double t_max,
   cell.component_count = 1;
   double previous_end = -1.0;
 
-  const int bsize = majorants_.block_size();
-  const auto& bd = majorants_.block_dims();
-  LatticeWalker blocks(o, dir, t_min, t_max, bsize, {0, 0, 0}, {bd[0] - 1, bd[1] - 1, bd[2] - 1});
-  std::array<int, 3> block, cell_index;
-  std::array<std::size_t, 8> corner;
   std::array<double, 8> w;
-  double tb0, tb1, t0, t1;
-  while (blocks.next(block, tb0, tb1)) {
-    if (majorants_.max_majorant(block[0], block[1], block[2]) <= 0.0f) continue;
-    std::array<int, 3> lo, hi;
-    for (int a = 0; a < 3; ++a) {
-      lo[a] = block[a] * bsize;
-      hi[a] = std::min(lo[a] + bsize - 1, n[a]);
-    }
-    LatticeWalker cells(o, dir, tb0, tb1, 1.0, lo, hi);
-    while (cells.next(cell_index, t0, t1)) {
-      if (!(t1 > t0)) continue;
-      corner_indices(cell_index, n, corner);
-      if (!any_extinction(channels_, corner)) continue;
-      // Usually one piece: the cell itself.
-      const int pieces = std::max(1, static_cast<int>(std::ceil((t1 - t0) / options.max_cell_m)));
-      const double hp = (t1 - t0) / pieces;
-      for (int q = 0; q < pieces; ++q) {
-        const double p0 = t0 + q * hp, p1 = q + 1 == pieces ? t1 : p0 + hp;
-        const bool continuous = p0 == previous_end;
-        if (continuous) {
-          std::swap(slot[0], slot[2]);
-          temperature[0] = temperature[2];
-        }
-        const double ts[3] = {p0, 0.5 * (p0 + p1), p1};
-        for (int p = continuous ? 1 : 0; p < 3; ++p) {
-          std::array<double, 3> f;
-          for (int a = 0; a < 3; ++a)
-            f[a] = std::clamp(o[a] + ts[p] * dir[a] - cell_index[a], 0.0, 1.0);
-          corner_weights(f, w);
-          temperature[p] = evaluate_point(channels_, ns, corner, w, with_g, slot[p]);
-        }
-        for (int p = 0; p < 3; ++p)
-          cell.point[p][0] = {slot[p], slot[p] + ns, with_g ? slot[p] + 2 * ns : nullptr,
-                              temperature[p]};
-        cell.t_begin = p0;
-        cell.t_end = p1;
-        cell.continuous_with_previous = continuous;
-        previous_end = p1;
-        if (!visit.visit(cell)) return;
-      }
-    }
-  }
+  for_each_cell(g, majorants_, channels_, ray, t_min, t_max,
+                [&](const Ray& cell_ray, const std::array<int, 3>& cell_index,
+                    const std::array<std::size_t, 8>& corner, double t0, double t1) {
+                  // Usually one piece: the cell itself.
+                  const int pieces =
+                      std::max(1, static_cast<int>(std::ceil((t1 - t0) / options.max_cell_m)));
+                  const double hp = (t1 - t0) / pieces;
+                  for (int q = 0; q < pieces; ++q) {
+                    const double p0 = t0 + q * hp, p1 = q + 1 == pieces ? t1 : p0 + hp;
+                    const bool continuous = p0 == previous_end;
+                    if (continuous) {
+                      std::swap(slot[0], slot[2]);
+                      temperature[0] = temperature[2];
+                    }
+                    const double ts[3] = {p0, 0.5 * (p0 + p1), p1};
+                    for (int p = continuous ? 1 : 0; p < 3; ++p) {
+                      weights_at(cell_ray, ts[p], cell_index, w);
+                      temperature[p] = evaluate_point(channels_, ns, corner, w, with_g, slot[p]);
+                    }
+                    for (int p = 0; p < 3; ++p)
+                      cell.point[p][0] = {slot[p], slot[p] + ns,
+                                          with_g ? slot[p] + 2 * ns : nullptr, temperature[p]};
+                    cell.t_begin = p0;
+                    cell.t_end = p1;
+                    cell.continuous_with_previous = continuous;
+                    previous_end = p1;
+                    if (!visit.visit(cell)) return false;
+                  }
+                  return true;
+                });
 }
 
-namespace {
-
-// τ per medium sample by Simpson's rule on each cell's three points.
-class SimpsonOpticalDepth final : public MarchVisitor {
- public:
-  explicit SimpsonOpticalDepth(double* tau) : tau_(tau) {}
-  bool visit(const MarchCell& cell) override {
-    const double h = cell.t_end - cell.t_begin;
-    for (int k = 0; k < cell.spectral_count; ++k) {
-      const double a = cell.point[0][0].sigma_a[k] + cell.point[0][0].sigma_s[k],
-                   m = cell.point[1][0].sigma_a[k] + cell.point[1][0].sigma_s[k],
-                   b = cell.point[2][0].sigma_a[k] + cell.point[2][0].sigma_s[k];
-      tau_[k] += h / 6.0 * (a + 4.0 * m + b);
-    }
-    return true;
-  }
-
- private:
-  double* tau_;
-};
-
-}  // namespace
-
 void GridMedium::add_optical_depth(const Ray& ray, double t_min, double t_max, double* tau) const {
-  SimpsonOpticalDepth depth(tau);
-  march_cells(ray, t_min, t_max, {}, depth);
+  // march_cells' cells and points, σt alone per point (no temperature, no
+  // visitor): the sun's depth at every node of a radiance cache's lattice
+  // is a ray each, most of a small frame's fixed cost (docs/performance.md).
+  const VoxelGrid& g = *grid_;
+  const int ns = g.spectral_count();
+  // σt per sample at the cell's entry, middle and exit, the entry reused
+  // from the previous exit. Per thread: no allocation per ray once warm.
+  thread_local std::vector<double> buffer;
+  buffer.resize(3 * static_cast<std::size_t>(ns));
+  double* at[3] = {buffer.data(), buffer.data() + ns, buffer.data() + 2 * ns};
+  double previous_end = -1.0;
+  std::array<double, 8> w;
+  for_each_cell(g, majorants_, channels_, ray, t_min, t_max,
+                [&](const Ray& cell_ray, const std::array<int, 3>& cell_index,
+                    const std::array<std::size_t, 8>& corner, double t0, double t1) {
+                  const bool continuous = t0 == previous_end;
+                  if (continuous) std::swap(at[0], at[2]);
+                  const double ts[3] = {t0, 0.5 * (t0 + t1), t1};
+                  for (int p = continuous ? 1 : 0; p < 3; ++p) {
+                    weights_at(cell_ray, ts[p], cell_index, w);
+                    extinction_at_point(channels_, ns, corner, w, at[p]);
+                  }
+                  // Simpson's rule, exact for the trilinear σt (a cubic).
+                  const double h = t1 - t0;
+                  for (int k = 0; k < ns; ++k)
+                    tau[k] += h / 6.0 * (at[0][k] + 4.0 * at[1][k] + at[2][k]);
+                  previous_end = t1;
+                  return true;
+                });
 }
 
 bool GridMedium::may_be_nonzero(const BBox3& world_box) const {
