@@ -178,12 +178,18 @@ bool trilinear_corners(const VoxelGrid& g, const Vec3& u, std::array<std::size_t
   return true;
 }
 
-// σa, σs and, with kWithG, g (weighted by scattering, so that mixing clear
-// and scattering voxels keeps the scatterers' phase function) of spectral
-// sample s.
+// The trilinear sums of σa, σs and, with kWithG, g (weighted by
+// scattering, so that mixing clear and scattering voxels keeps the
+// scatterers' phase function) of spectral sample s at the corners `idx`
+// with weights `w`: every point evaluation of the grid (coefficients_at, the
+// march's points, the optical depth) sums them this way, so they agree to
+// the bit.
+struct SampleSums {
+  double sigma_a, sigma_s, g;
+};
 template <bool kWithG>
-void sample_coefficients(const GridChannels& ch, int s, const std::array<std::size_t, 8>& idx,
-                         const std::array<double, 8>& w, MediumPoint& out) {
+inline SampleSums sample_sums(const GridChannels& ch, int s, const std::array<std::size_t, 8>& idx,
+                              const std::array<double, 8>& w) {
   const float* sigma_a = ch.sigma_a[static_cast<std::size_t>(s)];
   const float* sigma_s = ch.sigma_s[static_cast<std::size_t>(s)];
   const float* g = ch.g[static_cast<std::size_t>(s)];
@@ -194,9 +200,17 @@ void sample_coefficients(const GridChannels& ch, int s, const std::array<std::si
     ss += ssc;
     if constexpr (kWithG) gs += ssc * g[idx[c]];
   }
-  out.sigma_a[s] = sa;
-  out.sigma_s[s] = ss;
-  if constexpr (kWithG) out.g[s] = ss > 0 ? gs / ss : 0.0;
+  return {sa, ss, kWithG && ss > 0 ? gs / ss : 0.0};
+}
+
+// Sample s's sums into `out` (its g only with kWithG).
+template <bool kWithG>
+void sample_coefficients(const GridChannels& ch, int s, const std::array<std::size_t, 8>& idx,
+                         const std::array<double, 8>& w, MediumPoint& out) {
+  const SampleSums sums = sample_sums<kWithG>(ch, s, idx, w);
+  out.sigma_a[s] = sums.sigma_a;
+  out.sigma_s[s] = sums.sigma_s;
+  if constexpr (kWithG) out.g[s] = sums.g;
 }
 
 double trilinear_temperature(const GridChannels& ch, const std::array<std::size_t, 8>& idx,
@@ -268,12 +282,9 @@ void GridMedium::trace_segments(const Ray& ray, double t_min, double t_max,
   const VoxelGrid& g = *grid_;
   const int ns = g.spectral_count();
 
-  std::vector<Cubic> cubics(2 * static_cast<std::size_t>(ns));
-  Cubic* sig_a = cubics.data();
-  Cubic* sig_s = cubics.data() + ns;
+  // Allocated at the first cell: a ray that misses the grid costs nothing.
+  std::vector<Cubic> cubics;
   MediumComponent component;
-  component.sigma_a = sig_a;
-  component.sigma_s = sig_s;
   MediumSegment seg;
   seg.spectral_count = ns;
   seg.components = &component;
@@ -293,6 +304,11 @@ void GridMedium::trace_segments(const Ray& ray, double t_min, double t_max,
                     beta[a] = dir[a];
                   }
                   corner_weight_cubics(alpha, beta, basis);
+                  if (cubics.empty()) {
+                    cubics.resize(2 * static_cast<std::size_t>(ns));
+                    component.sigma_a = cubics.data();
+                    component.sigma_s = cubics.data() + ns;
+                  }
                   auto combine = [&](const float* values) {
                     Cubic r;
                     for (int corner = 0; corner < 8; ++corner) {
@@ -302,10 +318,10 @@ void GridMedium::trace_segments(const Ray& ray, double t_min, double t_max,
                     return r;
                   };
                   for (int s = 0; s < ns; ++s) {
-                    sig_a[s] = combine(g.sigma_a(s));
-                    sig_s[s] = combine(g.sigma_s(s));
+                    cubics[static_cast<std::size_t>(s)] = combine(channels_.sigma_a[s]);
+                    cubics[static_cast<std::size_t>(ns + s)] = combine(channels_.sigma_s[s]);
                   }
-                  component.temperature = combine(g.temperature());
+                  component.temperature = combine(channels_.temperature);
                   seg.t_begin = t0;
                   seg.t_end = t1;
                   seg.continuous_with_previous = t0 == previous_end;
@@ -335,22 +351,13 @@ inline void corner_weights(const std::array<double, 3>& f, std::array<double, 8>
 double evaluate_point(const GridChannels& ch, int ns, const std::array<std::size_t, 8>& corner,
                       const std::array<double, 8>& w, bool with_g, double* out) {
   for (int s = 0; s < ns; ++s) {
-    const float* sa = ch.sigma_a[s];
-    const float* ss = ch.sigma_s[s];
-    double a = 0, b = 0, gs = 0;
-    for (int c = 0; c < 8; ++c) {
-      a += w[c] * sa[corner[c]];
-      const double bc = w[c] * ss[corner[c]];
-      b += bc;
-      if (with_g) gs += bc * ch.g[s][corner[c]];
-    }
-    out[s] = a;
-    out[ns + s] = b;
-    if (with_g) out[2 * ns + s] = b > 0 ? gs / b : 0.0;
+    const SampleSums sums =
+        with_g ? sample_sums<true>(ch, s, corner, w) : sample_sums<false>(ch, s, corner, w);
+    out[s] = sums.sigma_a;
+    out[ns + s] = sums.sigma_s;
+    if (with_g) out[2 * ns + s] = sums.g;
   }
-  double temperature = 0;
-  for (int c = 0; c < 8; ++c) temperature += w[c] * ch.temperature[corner[c]];
-  return temperature;
+  return trilinear_temperature(ch, corner, w);
 }
 
 // The trilinear weights at point o + t dir of the cell-space ray in
@@ -363,19 +370,13 @@ inline void weights_at(const Ray& cell_ray, double t, const std::array<int, 3>& 
   corner_weights(f, w);
 }
 
-// σa + σs per sample at one point of a cell into `out`: evaluate_point's
-// sums, added as the optical depth's Simpson rule adds them (so its bits).
+// σa + σs per sample at one point of a cell into `out`: the optical depth's
+// Simpson rule adds the march's point sums so (and so has their bits).
 void extinction_at_point(const GridChannels& ch, int ns, const std::array<std::size_t, 8>& corner,
                          const std::array<double, 8>& w, double* out) {
   for (int s = 0; s < ns; ++s) {
-    const float* sa = ch.sigma_a[s];
-    const float* ss = ch.sigma_s[s];
-    double a = 0, b = 0;
-    for (int c = 0; c < 8; ++c) {
-      a += w[c] * sa[corner[c]];
-      b += w[c] * ss[corner[c]];
-    }
-    out[s] = a + b;
+    const SampleSums sums = sample_sums<false>(ch, s, corner, w);
+    out[s] = sums.sigma_a + sums.sigma_s;
   }
 }
 
