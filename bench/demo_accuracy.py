@@ -15,7 +15,8 @@ quadrature. Nothing is asserted (docs/performance.md, docs/validation.md).
 
     PYTHONPATH=build/release/python /usr/bin/python3 bench/demo_accuracy.py \
         [--size 64x32] [--time 8] [--reference-spp 1024] [--reference-file F]
-        [--method radiance-cache] [--photons N] [--spp 4] [--sh-degree D]
+        [--method radiance-cache] [--photons N] [--photons-by-band BAND=N,...]
+        [--spp 4] [--sh-degree D]
         [--estimate tracks|collisions]
         [--voxel M] [--seed N] [--no-sensor-peaks]
 """
@@ -48,6 +49,9 @@ def main():
     parser.add_argument("--reference-file")
     parser.add_argument("--method", default="radiance-cache")
     parser.add_argument("--photons", type=int, default=0)
+    parser.add_argument("--photons-by-band", default="",
+                        help="radiance cache: BAND=N[,BAND=N...], the photons per node of those "
+                             "bands (/render/radiance_cache/photons)")
     # Four stratified samples per pixel by default: the reference is each
     # pixel's mean, which one sample at the pixel's centre is not where an
     # edge (the horizon, the cloud's rim) crosses it (docs/validation.md).
@@ -105,6 +109,12 @@ def main():
             cache = {}
             if args.photons > 0:
                 cache["photons"] = args.photons
+            if args.photons_by_band:
+                counts = {"*": args.photons} if args.photons > 0 else {}
+                for item in args.photons_by_band.split(","):
+                    band, n = item.split("=")
+                    counts[band] = int(float(n))
+                cache["photons"] = counts
             if args.sh_degree > 0:
                 cache["sh_degree"] = args.sh_degree
             if args.estimate:

@@ -10,8 +10,11 @@
 //                        [--prepare examples/smoke-screen/prepare.json]
 //                        [--times 0:30:6] [--threads 0]
 //                        [--method M] [--size WxH] [--photons N] [--spp N]
+//                        [--photons-by-band BAND=N[,BAND=N…]]
 // --method, --size (every sensor), --photons (per spectral node, photon
-// map or radiance cache) and --spp (samples per pixel) override the scene's. Also prints the mean
+// map or radiance cache), --photons-by-band (the radiance cache's count for
+// the nodes of those bands, /render/radiance_cache/photons) and --spp
+// (samples per pixel) override the scene's. Also prints the mean
 // and the peak wall time per frame (all sensors). For the radiance cache the per-frame cache
 // (shared by the sensors) is charged to the first sensor. Run from the repository root (default
 // paths are relative to it).
@@ -56,6 +59,7 @@ int main(int argc, char** argv) {
   double t0 = 0, t1 = 30, step = 6;
   int threads = 0, width = 0, height = 0;
   long long photons = 0;
+  std::map<std::string, long long> photons_by_band;
   int spp = 0;
   std::string method;
   for (int i = 1; i < argc; ++i) {
@@ -71,7 +75,22 @@ int main(int argc, char** argv) {
       method = argv[++i];
     else if (a == "--photons" && has_value)
       photons = std::atoll(argv[++i]);
-    else if (a == "--spp" && has_value) {
+    else if (a == "--photons-by-band" && has_value) {
+      const std::string list = argv[++i];
+      for (std::size_t start = 0; start <= list.size();) {
+        const std::size_t end = std::min(list.find(',', start), list.size());
+        const std::string item = list.substr(start, end - start);
+        const std::size_t eq = item.find('=');
+        const long long n = eq == std::string::npos ? 0 : std::atoll(item.c_str() + eq + 1);
+        if (n < 1) {
+          std::fprintf(stderr,
+                       "bench_screening_demo: --photons-by-band expects BAND=N[,BAND=N…]\n");
+          return 2;
+        }
+        photons_by_band[item.substr(0, eq)] = n;
+        start = end + 1;
+      }
+    } else if (a == "--spp" && has_value) {
       spp = std::atoi(argv[++i]);
       if (spp < 1) {
         std::fprintf(stderr, "bench_screening_demo: --spp expects a count of at least 1\n");
@@ -90,7 +109,8 @@ int main(int argc, char** argv) {
     } else {
       std::fprintf(stderr,
                    "usage: bench_screening_demo [--scene S] [--prepare P] [--times A:B:STEP] "
-                   "[--threads N] [--method M] [--size WxH] [--photons N] [--spp N]\n");
+                   "[--threads N] [--method M] [--size WxH] [--photons N] [--spp N] "
+                   "[--photons-by-band BAND=N[,BAND=N…]]\n");
       return 2;
     }
   }
@@ -127,6 +147,8 @@ int main(int argc, char** argv) {
       scene.settings.photon_map.photons_per_node = photons;
       scene.settings.radiance_cache.photons_per_node = photons;
     }
+    for (const auto& [band, n] : photons_by_band)
+      scene.settings.radiance_cache.photons_by_band[band] = n;
     if (spp > 0) scene.settings.samples_per_pixel = spp;
     std::vector<double> times;
     for (double t = t0; t <= t1 + 1e-9 * step; t += step) times.push_back(t);
@@ -163,6 +185,9 @@ int main(int argc, char** argv) {
             ? scene.settings.radiance_cache.photons_per_node
             : scene.settings.photon_map.photons_per_node,
         threads);
+    if (scene.settings.method == RenderMethod::kRadianceCache)
+      for (const auto& [band, n] : scene.settings.radiance_cache.photons_by_band)
+        std::printf("  band %s: %lld photons per node\n", band.c_str(), n);
     std::printf(
         "preparation (once): %.2f s (concentrations %.2f, optics %.2f, keyframes %.2f), %zu "
         "keyframes\n",

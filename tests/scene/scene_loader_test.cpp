@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <map>
 
 #include "obscura/core/error.h"
 #include "obscura/scene/scene.h"
@@ -236,6 +237,39 @@ TEST(SceneLoader, PhotonMapSettings) {
   doc["render"]["photon_map"]["k"] = 30;
   doc["render"]["photon_map"]["photons"] = 0;
   EXPECT_NE(load_error(doc).find("/render/photon_map/photons"), std::string::npos);
+}
+
+// The radiance cache's photons per band: a count for every band, or one per
+// band name with "*" for the others; a band no sensor renders is refused by
+// its path, with the bands the sensors have.
+TEST(SceneLoader, RadianceCachePhotonsPerBand) {
+  auto doc = minimal_scene();
+  doc["render"]["method"] = "radiance-cache";
+  doc["render"]["radiance_cache"] = {{"photons", 5000}};
+  Scene s = parse_scene(doc, "scene.json");
+  EXPECT_EQ(s.settings.radiance_cache.photons_per_node, 5000);
+  EXPECT_TRUE(s.settings.radiance_cache.photons_by_band.empty());
+  doc["render"]["radiance_cache"]["photons"] = {{"*", 7000}, {"8:12", 300}, {"custom", 20}};
+  s = parse_scene(doc, "scene.json");
+  EXPECT_EQ(s.settings.radiance_cache.photons_per_node, 7000);
+  EXPECT_EQ(s.settings.radiance_cache.photons_by_band,
+            (std::map<std::string, long long>{{"8:12", 300}, {"custom", 20}}));
+  doc["render"]["radiance_cache"]["photons"] = {{"8:12", 300}};  // the others: the default
+  EXPECT_EQ(parse_scene(doc, "scene.json").settings.radiance_cache.photons_per_node,
+            RadianceCacheSettings{}.photons_per_node);
+  doc["render"]["radiance_cache"]["photons"] = {{"lwir", 300}};
+  std::string m = load_error(doc);
+  EXPECT_NE(m.find("/render/radiance_cache/photons/lwir"), std::string::npos) << m;
+  EXPECT_NE(m.find("mwir, 8:12, custom"), std::string::npos) << m;
+  doc["render"]["radiance_cache"]["photons"] = {{"8:12", 0}};
+  m = load_error(doc);
+  EXPECT_NE(m.find("/render/radiance_cache/photons/8:12"), std::string::npos) << m;
+  doc["render"]["radiance_cache"]["photons"] = {{"8:12", "many"}};
+  m = load_error(doc);
+  EXPECT_NE(m.find("/render/radiance_cache/photons/8:12"), std::string::npos) << m;
+  doc["render"]["radiance_cache"]["photons"] = {{"*", 0}};
+  m = load_error(doc);
+  EXPECT_NE(m.find("/render/radiance_cache/photons"), std::string::npos) << m;
 }
 
 TEST(SceneLoader, SyntaxErrorNamesLineAndColumn) {

@@ -65,9 +65,9 @@ LatticeBatchIntegrator::LatticeBatchIntegrator(const Scene& scene, const FrameSp
     volume = grid_.volume.get();
   } else {
     // Only camera rays read it: the light where each node's sensors look.
-    cache_ = std::make_unique<RadianceCache>(scene, distinct_.nodes, processes,
-                                             RadianceCache::SunDepths::kByCaller,
-                                             sensors_of_nodes(distinct_));
+    cache_ = std::make_unique<RadianceCache>(
+        scene, distinct_.nodes, processes, RadianceCache::SunDepths::kByCaller,
+        sensors_of_nodes(distinct_), photons_of_nodes(scene, distinct_));
     if (!cache_->volume().has_medium()) throw not_one_grid();
     volume = &cache_->volume();
     source = MarchSource::kCache;

@@ -73,7 +73,21 @@ void parse_photon_map(JsonObject& o, PhotonMapSettings& p) {
 
 void parse_radiance_cache(JsonObject& o, RadianceCacheSettings& c) {
   c.voxel_m = o.number_or("voxel_m", c.voxel_m);
-  c.photons_per_node = o.integer_or("photons", c.photons_per_node);
+  // "photons": a count for every band, or {band: count, "*": count for the
+  // others} (the atmosphere's extinction_per_km form).
+  if (o.has("photons") && o.raw("photons").is_object()) {
+    JsonObject by_band = o.object("photons");
+    for (const auto& [band, value] : o.raw("photons").items()) {
+      const long long count = by_band.integer(band);
+      if (band == "*")
+        c.photons_per_node = count;
+      else
+        c.photons_by_band[band] = count;
+    }
+    by_band.finish();
+  } else {
+    c.photons_per_node = o.integer_or("photons", c.photons_per_node);
+  }
   c.sh_degree = saturate_int(o.integer_or("sh_degree", c.sh_degree));
   c.kernel_radius_nodes = saturate_int(o.integer_or("kernel_radius_nodes", c.kernel_radius_nodes));
   c.lateral_period_m = o.number_or("lateral_period_m", c.lateral_period_m);
@@ -171,6 +185,9 @@ void check_render_settings(const RenderSettings& s, const SettingError& error) {
           "must be >= 0 m (0: the cloud's voxel size)");
   require(rc.photons_per_node >= 1 && rc.photons_per_node <= 2000000000LL, "radiance_cache/photons",
           "must lie in [1, 2e9] (photons launched per spectral node)");
+  for (const auto& [band, count] : rc.photons_by_band)
+    require(count >= 1 && count <= 2000000000LL, "radiance_cache/photons/" + band,
+            "must lie in [1, 2e9] (photons launched per spectral node of the band)");
   require(rc.sh_degree >= 1 && rc.sh_degree <= 3, "radiance_cache/sh_degree", "must be 1, 2 or 3");
   require(rc.kernel_radius_nodes >= 1 && rc.kernel_radius_nodes <= 4,
           "radiance_cache/kernel_radius_nodes", "must lie in [1, 4] lattice spacings");

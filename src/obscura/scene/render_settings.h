@@ -6,6 +6,7 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -75,6 +76,12 @@ struct RadianceCacheSettings {
   // medium's largest extent / 32.
   double voxel_m = 0.0;
   long long photons_per_node = 1000000;  // launched per spectral node
+  // Per band (its name as the sensors give it: a preset or "LO:HI"): the
+  // photons launched per spectral node of that band instead, where it needs
+  // fewer or more than the others (a thermal band, whose light is mostly the
+  // exact emission, converges with far fewer: docs/performance.md). A node
+  // that two bands share takes the larger count.
+  std::map<std::string, long long> photons_by_band;
   int sh_degree = 2;  // spherical-harmonic degree of the incident radiance, 1–3
   // Splatting kernel half-width, in lattice spacings: a tent of that
   // half-width per axis (1: each photon to the 8 nodes around it).

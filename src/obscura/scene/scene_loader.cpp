@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <optional>
@@ -338,6 +339,23 @@ void check_photon_memory(const Scene& scene, const JsonObject& root) {
                            scene.settings.spectral_nodes_per_band, bands));
 }
 
+// Every band that /render/radiance_cache/photons names is a band of some
+// sensor: a count for a band nobody renders is a typo or a stale scene.
+void check_bands_named(const Scene& scene, const std::string& file) {
+  for (const auto& [band, count] : scene.settings.radiance_cache.photons_by_band) {
+    std::vector<std::string> names;
+    for (const Sensor& s : scene.sensors)
+      for (const Band& b : s.bands)
+        if (std::find(names.begin(), names.end(), b.name()) == names.end())
+          names.push_back(b.name());
+    if (std::find(names.begin(), names.end(), band) == names.end())
+      throw InputError(file, "/render/radiance_cache/photons/" + band,
+                       fmt::format("no sensor renders a band '{}' (the sensors' bands: {}; "
+                                   "\"*\" for all others)",
+                                   band, fmt::join(names, ", ")));
+  }
+}
+
 }  // namespace
 
 Scene parse_scene(const nlohmann::json& doc, const std::filesystem::path& file) {
@@ -400,6 +418,7 @@ Scene parse_scene(const nlohmann::json& doc, const std::filesystem::path& file) 
   if (auto m = root.optional_object("metrics")) scene.metrics = parse_metrics_settings(*m);
   if (auto sun = root.optional_object("sun")) scene.sun = parse_sun(*sun);
   if (auto r = root.optional_object("render")) scene.settings = parse_render_settings(*r);
+  check_bands_named(scene, fname);
   scene.outputs = parse_output_formats(root);
   check_photon_memory(scene, root);
   if (scene.sun.enabled && !method_scatters(scene.settings.method))

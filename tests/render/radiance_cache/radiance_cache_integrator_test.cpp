@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <map>
 #include <string>
 
 #include "medium/test_grids.h"
@@ -70,6 +71,50 @@ TEST(RadianceCacheIntegrator, BitIdenticalWithOneAndTwoThreads) {
   const SensorImage c = testing::render_first_sensor(scene, 2, 8);
   EXPECT_NE(0, std::memcmp(a.bands[0].radiance.data(), c.bands[0].radiance.data(),
                            a.bands[0].radiance.size() * sizeof(float)));
+}
+
+// /render/radiance_cache/photons per band: each band's image is the one
+// rendered with its own count for every band, bit for bit (so its photons
+// and streams are those of that count alone), and a node that two bands
+// share takes the larger of their counts.
+TEST(RadianceCacheIntegrator, EachBandTakesItsOwnPhotonCount) {
+  const auto with = [](long long photons, std::map<std::string, long long> by_band) {
+    Scene scene = sunlit_scene(RenderMethod::kRadianceCache);
+    scene.medium = std::make_shared<GridMedium>(testing::random_grid({12, 10, 8}, 3, 17));
+    scene.settings.radiance_cache.photons_per_node = photons;
+    scene.settings.radiance_cache.photons_by_band = std::move(by_band);
+    return scene;
+  };
+  Scene mixed = with(20000, {{"lwir", 3000}}), many = with(20000, {}), few = with(3000, {});
+  const SensorImage a = testing::render_first_sensor(mixed, 2, 3);
+  const SensorImage b = testing::render_first_sensor(many, 2, 3);
+  const SensorImage c = testing::render_first_sensor(few, 2, 3);
+  const auto same = [](const SensorImage& x, const SensorImage& y, int band) {
+    const auto& p = x.bands[static_cast<std::size_t>(band)].radiance;
+    const auto& q = y.bands[static_cast<std::size_t>(band)].radiance;
+    return p.size() == q.size() && std::memcmp(p.data(), q.data(), p.size() * sizeof(float)) == 0;
+  };
+  EXPECT_TRUE(same(a, b, 0));   // visible: the default count
+  EXPECT_TRUE(same(a, c, 1));   // lwir: its own
+  EXPECT_FALSE(same(b, c, 1));  // and the count shows in the lwir image
+
+  // Shared nodes: "3:5" and "mwir" are the same interval, so the same nodes.
+  Scene shared = with(500, {{"mwir", 2000}, {"8:12", 100}});
+  Sensor other = shared.sensors[0];
+  other.name = "other";
+  other.bands = {Band::parse("3:5"), Band::preset("mwir"), Band::parse("8:12")};
+  shared.sensors[0].bands = {Band::preset("visible")};
+  shared.sensors.push_back(other);
+  const DistinctNodes distinct = distinct_nodes(frame_spectra(shared));
+  const std::vector<long long> photons = photons_of_nodes(shared, distinct);
+  ASSERT_EQ(photons.size(), distinct.nodes.size());
+  const auto count_of = [&](int sensor, int band) {
+    return photons[static_cast<std::size_t>(distinct.index[sensor][band].front())];
+  };
+  EXPECT_EQ(count_of(0, 0), 500);   // visible: the default
+  EXPECT_EQ(count_of(1, 0), 2000);  // "3:5" shares mwir's nodes: the larger
+  EXPECT_EQ(count_of(1, 1), 2000);
+  EXPECT_EQ(count_of(1, 2), 100);  // fewer than the default where only it holds them
 }
 
 // White furnace as an image: a conservative grid cloud (the lattice on its

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -102,7 +103,8 @@ std::vector<SpectralLerp> lerps_of(const std::vector<SpectralNode>& nodes) {
 
 RadianceCache::RadianceCache(const Scene& scene, const std::vector<SpectralNode>& nodes,
                              const ProcessGroup& processes, SunDepths sun_depths,
-                             const std::vector<std::vector<int>>& node_sensors)
+                             const std::vector<std::vector<int>>& node_sensors,
+                             const std::vector<long long>& node_photons)
     : lattice_(*scene.medium, scene.settings.radiance_cache.voxel_m,
                scene.settings.radiance_cache.lateral_period_m,
                static_cast<std::size_t>(kMaxLatticeNodes)),
@@ -128,6 +130,10 @@ RadianceCache::RadianceCache(const Scene& scene, const std::vector<SpectralNode>
                fmt::format("building the radiance cache ({} nodes at {:.4g} m)", slots,
                            lattice_.spacing_m()));
   ground_.resize(nodes.size());
+  node_photons_ = node_photons;
+  if (node_photons_.empty())
+    node_photons_.assign(nodes.size(), scene.settings.radiance_cache.photons_per_node);
+  OBSCURA_CHECK(node_photons_.size() == nodes.size());
   choose_peak_views(scene);
   choose_light_cells(scene, nodes.size(), node_sensors);
   const std::vector<float> kernel_moments = kernel_scattering(scene);
@@ -137,6 +143,30 @@ RadianceCache::RadianceCache(const Scene& scene, const std::vector<SpectralNode>
   for (std::size_t u = 0; u < nodes.size(); ++u)
     splat(scene, nodes[u], static_cast<int>(u), kernel_moments);
   seconds = seconds_since(start);
+}
+
+std::vector<long long> photons_of_nodes(const Scene& scene, const DistinctNodes& distinct) {
+  const RadianceCacheSettings& settings = scene.settings.radiance_cache;
+  std::vector<long long> photons(distinct.nodes.size(), 0);
+  // Spectra that are not the scene's sensors' (a validation case's one
+  // band, with no sensor) take photons_per_node.
+  const auto band_name = [&](std::size_t s, std::size_t b) -> const std::string* {
+    return s < scene.sensors.size() && b < scene.sensors[s].bands.size()
+               ? &scene.sensors[s].bands[b].name()
+               : nullptr;
+  };
+  for (std::size_t s = 0; s < distinct.index.size(); ++s)
+    for (std::size_t b = 0; b < distinct.index[s].size(); ++b) {
+      const std::string* name = band_name(s, b);
+      const auto named =
+          name ? settings.photons_by_band.find(*name) : settings.photons_by_band.end();
+      const long long count =
+          named == settings.photons_by_band.end() ? settings.photons_per_node : named->second;
+      for (const int u : distinct.index[s][b])
+        photons[static_cast<std::size_t>(u)] =
+            std::max(photons[static_cast<std::size_t>(u)], count);
+    }
+  return photons;
 }
 
 std::size_t RadianceCache::memory_bytes() const { return volume_.memory_bytes(); }
@@ -390,7 +420,7 @@ void RadianceCache::splat(const Scene& scene, const SpectralNode& node, int inde
   const RadianceCacheSettings& settings = scene.settings.radiance_cache;
   auto t0 = std::chrono::steady_clock::now();
   PhotonTracingSettings tracing;
-  tracing.photons = settings.photons_per_node;
+  tracing.photons = node_photons_[static_cast<std::size_t>(index)];
   tracing.store_first_environment_scatter = true;  // only the sun's single scattering is apart
   tracing.seed = scene.settings.seed;
   tracing.threads = scene.settings.threads;

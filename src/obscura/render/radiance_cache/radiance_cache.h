@@ -59,10 +59,13 @@ class RadianceCache {
   // track-length splat and the sun's depths) is then made only in the box
   // around what they see (light_region.h: the same bits there, zero
   // elsewhere). Empty: everywhere, for rays in any direction.
+  // `node_photons`: per node, the photons launched for its light (empty:
+  // settings' photons_per_node for every node; photons_of_nodes).
   RadianceCache(const Scene& scene, const std::vector<SpectralNode>& nodes,
                 const ProcessGroup& processes = single_process(),
                 SunDepths sun_depths = SunDepths::kHere,
-                const std::vector<std::vector<int>>& node_sensors = {});
+                const std::vector<std::vector<int>>& node_sensors = {},
+                const std::vector<long long>& node_photons = {});
 
   // Sensors whose image's half-diagonal is at most this get the phase
   // function's forward peak beyond the harmonics (sensor_peaks).
@@ -133,10 +136,11 @@ class RadianceCache {
   std::vector<int> sensor_peak_;
   SunDepths sun_depths_ = SunDepths::kHere;
   LatticeVolume volume_;
-  std::vector<GroundLight> ground_;   // per spectral node
-  std::vector<CellBox> light_cells_;  // per spectral node
-  CellBox sun_cells_;                 // their union's bounds
-  bool light_in_view_ = false;        // whether they are boxes around sensors' views
+  std::vector<GroundLight> ground_;      // per spectral node
+  std::vector<CellBox> light_cells_;     // per spectral node
+  CellBox sun_cells_;                    // their union's bounds
+  bool light_in_view_ = false;           // whether they are boxes around sensors' views
+  std::vector<long long> node_photons_;  // per spectral node, launched
   std::uint64_t photons_stored_ = 0;
 };
 
@@ -146,5 +150,10 @@ class RadianceCache {
 // `record[j]` is node j's spectral node in the cache.
 void add_ground_light(const Scene& scene, const RadianceCache& cache, const CameraRay& camera,
                       const SpectralNodes& nodes, const int* record, double* behind);
+
+// Per distinct node of a frame, the photons its light is made from: the
+// count /render/radiance_cache/photons gives the bands that hold it (the
+// largest where several do), else photons_per_node.
+std::vector<long long> photons_of_nodes(const Scene& scene, const DistinctNodes& distinct);
 
 }  // namespace obscura

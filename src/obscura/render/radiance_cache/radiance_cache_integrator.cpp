@@ -20,9 +20,9 @@ RadianceCacheIntegrator::RadianceCacheIntegrator(const Scene& scene, const Frame
   if (scene.medium && !distinct_.nodes.empty()) {
     // Only this integrator's camera rays read the cache: its light is made
     // where the sensors of each node look.
-    cache_ = std::make_unique<RadianceCache>(scene, distinct_.nodes, processes,
-                                             RadianceCache::SunDepths::kHere,
-                                             sensors_of_nodes(distinct_));
+    cache_ = std::make_unique<RadianceCache>(
+        scene, distinct_.nodes, processes, RadianceCache::SunDepths::kHere,
+        sensors_of_nodes(distinct_), photons_of_nodes(scene, distinct_));
     preparation_.photons = cache_->photons_stored();
     preparation_.photon_bytes = cache_->memory_bytes();
     preparation_.seconds = cache_->seconds;
