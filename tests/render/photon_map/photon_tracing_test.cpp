@@ -229,7 +229,11 @@ TEST(PhotonTracing, ABlackGroundUnderTheCloudChangesNoPhoton) {
 // behind the disc point lost those lines' light in the box, and the
 // radiance cache's J read 16 % low in such a box; docs/physics.md.) Also
 // with a second, raised box as a surface the lines cross inside the
-// medium's box.
+// medium's box. The block is grey (emissivity 0.5; the ground black, so
+// that its one reflection sees B(T) everywhere), so what leaves its faces
+// is B(T) only when their reflection looks out on the right side: a piece
+// after a crossing takes the crossing's surface, its normal turned to face
+// the piece.
 TEST(PhotonTracing, EnvironmentTracksGiveAnEnclosuresFluence) {
   for (const bool with_block : {false, true}) {
     Scene scene;
@@ -239,12 +243,12 @@ TEST(PhotonTracing, EnvironmentTracksGiveAnEnclosuresFluence) {
         std::vector<double>{0.0}, 300.0);
     scene.sky = Sky::blackbody(300.0, true);
     scene.surfaces.push_back(std::make_unique<GroundPlane>("g", SurfaceMaterial{300.0, 1.0}, 0.0));
-    // A black block at 300 K inside the medium's box, off the ground: lines
+    // A grey block at 300 K inside the medium's box, off the ground: lines
     // through it are cut into pieces before, between and after its faces.
     const BBox3 block({-0.5, -0.5, 0.3}, {0.5, 0.5, 0.6});
     if (with_block)
       scene.surfaces.push_back(
-          std::make_unique<BoxSurface>("block", SurfaceMaterial{300.0, 1.0}, block));
+          std::make_unique<BoxSurface>("block", SurfaceMaterial{300.0, 0.5}, block));
     const SpectralNodes nodes = nodes_at(10.0, scene.medium->wavelengths_um());
     PhotonTracingSettings s;
     s.photons = 200000;

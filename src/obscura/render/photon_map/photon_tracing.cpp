@@ -8,6 +8,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <optional>
 
 #include "obscura/core/byte_stream.h"
 #include "obscura/core/check.h"
@@ -347,6 +348,9 @@ class PhotonSources {
     // faces (a mesh's edge) crosses twice at one point.
     const double shortest = 1e-9 * (t_out - t_in);
     double start = t_in;
+    // The crossing at `start`, once there is one: the first surface behind
+    // every later piece, so that piece's light leaves it (no search back).
+    std::optional<SurfaceHit> behind;
     while (out.count < EnvironmentLaunches::kMaxPieces) {
       SurfaceHit hit;
       const bool crosses = intersect_surfaces(scene_.surfaces, line, start, t_out, hit);
@@ -354,8 +358,11 @@ class PhotonSources {
       // No light travels inside a solid (below the ground, inside a box).
       const double middle = 0.5 * (start + end);
       if (end - start > shortest && !inside_a_solid(scene_.surfaces, line.at(middle)))
-        out.add(from_behind(line, middle, rng, scratch));
+        out.add(behind ? leaving(*behind, line.at(behind->t), d, rng, scratch)
+                       : from_behind(line, middle, rng, scratch));
       if (!crosses) break;
+      // Seen from beyond it, the crossing's normal faces the other way.
+      behind = SurfaceHit{hit.t, -hit.normal, hit.surface};
       start = end;
     }
     return out;
@@ -384,21 +391,25 @@ class PhotonSources {
   // the sky's.
   Launch from_behind(const Ray& line, double s, Rng& rng, MediumPoint& scratch) const {
     const Vec3& d = line.direction;
-    Launch l;
     SurfaceHit hit;
     const Ray back{line.at(s), -d};
-    double radiance = 0;
     if (intersect_surfaces(scene_.surfaces, back, 0.0, std::numeric_limits<double>::infinity(),
-                           hit)) {
-      const Vec3 x = back.at(hit.t);
-      radiance = surface_radiance(scene_, hit, x, node_, rng, scratch);
-      l.ray = Ray{x + hit.normal * 1e-9, d};
-    } else {
-      radiance = scene_.sky.radiance(-d, node_.wavelength_um);
-      l.ray = line;
-      l.from_sky = true;
-    }
-    l.power = radiance * kFourPi * disc_area_;
+                           hit))
+      return leaving(hit, back.at(hit.t), d, rng, scratch);
+    Launch l;
+    l.ray = line;
+    l.from_sky = true;
+    l.power = scene_.sky.radiance(-d, node_.wavelength_um) * kFourPi * disc_area_;
+    return l;
+  }
+
+  // The photon carrying the radiance that leaves surface point x (`hit`,
+  // its normal on the side d points to) along d.
+  Launch leaving(const SurfaceHit& hit, const Vec3& x, const Vec3& d, Rng& rng,
+                 MediumPoint& scratch) const {
+    Launch l;
+    l.ray = Ray{x + hit.normal * 1e-9, d};
+    l.power = surface_radiance(scene_, hit, x, node_, rng, scratch) * kFourPi * disc_area_;
     return l;
   }
 
