@@ -18,7 +18,7 @@ quadrature. Nothing is asserted (docs/performance.md, docs/validation.md).
         [--method radiance-cache] [--photons N] [--photons-by-band BAND=N,...]
         [--spp 4] [--sh-degree D]
         [--estimate tracks|collisions]
-        [--voxel M] [--seed N] [--no-sensor-peaks]
+        [--voxel M] [--kernel-radius R] [--seed N] [--no-sensor-peaks] [--save F]
 """
 import argparse
 import pathlib
@@ -60,10 +60,14 @@ def main():
     parser.add_argument("--sh-degree", type=int, default=0)
     parser.add_argument("--estimate", default="")
     parser.add_argument("--voxel", type=float, default=0.0)
+    parser.add_argument("--kernel-radius", type=int, default=0,
+                        help="radiance cache: the splat's tent half-width, lattice spacings")
     parser.add_argument("--seed", type=int, default=0, help="the method's seed (default: the scene's)")
     parser.add_argument("--no-sensor-peaks", action="store_true",
                         help="radiance cache: the harmonics alone, no forward peak towards the sensors")
     parser.add_argument("--threads", type=int, default=0)
+    parser.add_argument("--save", help="keep the method's band images (and the reference's) "
+                                       "in this .npz file, keyed sensor/band")
     parser.add_argument("--root", default=".", help="the repository root")
     args = parser.parse_args()
     width, height = (int(v) for v in args.size.split("x"))
@@ -121,6 +125,8 @@ def main():
                 cache["estimate"] = args.estimate
             if args.voxel > 0:
                 cache["voxel_m"] = args.voxel
+            if args.kernel_radius > 0:
+                cache["kernel_radius_nodes"] = args.kernel_radius
             if args.no_sensor_peaks:
                 cache["sensor_peaks"] = False
             extra = {"radiance_cache": cache}
@@ -131,6 +137,10 @@ def main():
         result = obscura.render(scene, time=args.time, threads=args.threads)
         seconds = time.perf_counter() - start
         targets = target_radiance(scene, result, args.time)
+        if args.save:
+            np.savez(args.save, **{f"{s}/{b}": np.array(result[s].bands[b].radiance)
+                                   for s in result for b in result[s].bands},
+                     **{f"reference/{s}/{b}": v for (s, b), v in reference.items()})
 
         print(f"demo frame at t = {args.time} s, {width}x{height} px; reference: path tracer, "
               f"{args.reference_spp} spp, {reference_s:.1f} s; {args.method}: {seconds:.2f} s")
