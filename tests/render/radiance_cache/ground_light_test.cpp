@@ -10,7 +10,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <numbers>
+#include <utility>
 
 #include "obscura/core/rng.h"
 #include "obscura/medium/homogeneous_medium.h"
@@ -89,6 +91,48 @@ TEST(GroundLight, AnAbsorbingCloudTakesSkyLightAndASunlitOneAddsLight) {
     scene.sky = Sky::blackbody(5000.0, false);
     EXPECT_TRUE(trace_photons(scene, nodes.nodes()[0], 1ull << 40, off).deposits.empty());
   }
+}
+
+// In a cloud that does not scatter the sun's photons deposit nothing (the
+// radiance cache then launches none: sun_photons false), so leaving them out
+// gives the others their share and the same ground light in expectation:
+// the deposits' sums with and without agree within 4 standard errors (each
+// photon deposits once at most, so a sum's variance is Σ d² − (Σ d)²/n).
+TEST(GroundLight, WithoutScatteringTheSunsPhotonsAddNothing) {
+  const SpectralNodes nodes(BandQuadrature(Band::flat("b", 0.499, 0.501), 1, 0.0), {0.5});
+  Scene scene = cloud_over_ground(1.0, 0.0);
+  scene.sky = Sky::blackbody(1700.0, false);  // about the sun's power at 0.5 µm
+  scene.sun.enabled = true;
+  scene.sun.elevation_deg = 60.0;
+  PhotonTracingSettings with_sun;
+  with_sun.photons = 40000;
+  with_sun.surface_deposits = true;
+  with_sun.absorb_by_weight = true;
+  PhotonTracingSettings without = with_sun;
+  without.sun_photons = false;
+  const TracedPhotons a = trace_photons(scene, nodes.nodes()[0], 1ull << 40, with_sun);
+  const TracedPhotons b = trace_photons(scene, nodes.nodes()[0], 1ull << 40, without);
+  EXPECT_GT(a.launched_count[0], 10000);  // the sun takes a good share…
+  EXPECT_EQ(b.launched_count[0], 0);      // … or none
+  EXPECT_EQ(b.launched_count[1] + b.launched_count[2], without.photons);
+  const auto sum_and_variance = [](const TracedPhotons& t) {
+    const double n =
+        static_cast<double>(t.launched_count[0] + t.launched_count[1] + t.launched_count[2]);
+    double sum = 0.0, sum_sq = 0.0;
+    for (const SurfaceDeposit& d : t.deposits) {
+      sum += d.power;
+      sum_sq += static_cast<double>(d.power) * d.power;
+    }
+    return std::pair{sum, sum_sq - sum * sum / n};
+  };
+  const auto [sa, va] = sum_and_variance(a);
+  const auto [sb, vb] = sum_and_variance(b);
+  ASSERT_LT(sa, 0.0);  // the cloud's shadow on the sky's light
+  EXPECT_NEAR(sa, sb, 4.0 * std::sqrt(va + vb));
+  // The sky's photons, more of them: less variance.
+  const double share = static_cast<double>(a.launched_count[1] + a.launched_count[2]) /
+                       static_cast<double>(without.photons);
+  EXPECT_LT(vb, (share + 0.1) * va) << "share " << share;
 }
 
 }  // namespace

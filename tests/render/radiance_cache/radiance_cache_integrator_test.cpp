@@ -3,6 +3,7 @@
 // and (validation label) in agreement with the path tracer on a sunlit cloud.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <map>
@@ -115,6 +116,47 @@ TEST(RadianceCacheIntegrator, EachBandTakesItsOwnPhotonCount) {
   EXPECT_EQ(count_of(1, 0), 2000);  // "3:5" shares mwir's nodes: the larger
   EXPECT_EQ(count_of(1, 1), 2000);
   EXPECT_EQ(count_of(1, 2), 100);  // fewer than the default where only it holds them
+}
+
+// A grid cloud that does not scatter (σs = 0 at every node of the records:
+// an absorbing smoke in the infrared) splats no flights: its light stays
+// zero and, without ground, no photon is traced and the image is the
+// emission–absorption image; over a ground its photons still carry the
+// cloud's light on the ground.
+TEST(RadianceCacheIntegrator, ACloudThatDoesNotScatterSplatsNoFlights) {
+  auto grid = testing::random_grid({12, 10, 8}, 3, 17);
+  for (int s = 0; s < 3; ++s)
+    for (std::size_t v = 0; v < grid->dims().count(); ++v) grid->sigma_s(s)[v] = 0.0f;
+  Scene scene = sunlit_scene(RenderMethod::kRadianceCache);
+  scene.medium = std::make_shared<GridMedium>(grid);
+  const std::vector<SpectralNode> nodes(
+      SpectralNodes(BandQuadrature(Band::flat("b", 3.2, 4.9), 1, 0.0),
+                    scene.medium->wavelengths_um())
+          .nodes());
+  const RadianceCache over_ground(scene, nodes);
+  EXPECT_EQ(over_ground.photons_stored(), 0u);
+  // Its emission onto the ground, less its shadow on the sky's light.
+  EXPECT_NE(over_ground.ground(0).total_power_w_um(), 0.0);
+
+  scene.surfaces.clear();
+  const RadianceCache alone(scene, nodes);
+  EXPECT_EQ(alone.photons_stored(), 0u);
+  Scene ea = sunlit_scene(RenderMethod::kEmissionAbsorption);
+  ea.surfaces.clear();
+  ea.medium = scene.medium;
+  const SensorImage a = testing::render_first_sensor(scene, 2, 5);
+  const SensorImage b = testing::render_first_sensor(ea, 2, 5);
+  ASSERT_EQ(a.bands.size(), b.bands.size());
+  // The LWIR band (the visible's radiance from a 350 K cloud is 10⁻²¹ of
+  // it): to 0.5 % of its brightest pixel, the two marches' own difference on
+  // this rough grid (the cache's records and Planck table in float against
+  // emission–absorption's; 0.2 % with the flights splatted as well).
+  const auto& got = a.bands[1].radiance;
+  const auto& want = b.bands[1].radiance;
+  const float brightest = *std::max_element(want.begin(), want.end());
+  ASSERT_GT(brightest, 0.0f);
+  for (std::size_t p = 0; p < want.size(); ++p)
+    EXPECT_NEAR(got[p], want[p], 5e-3 * brightest) << "pixel " << p;
 }
 
 // White furnace as an image: a conservative grid cloud (the lattice on its

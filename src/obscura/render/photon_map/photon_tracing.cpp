@@ -280,7 +280,8 @@ class PhotonSources {
   PhotonSourcePowers estimate(const PhotonTracingSettings& settings,
                               std::uint64_t stream_base) const {
     PhotonSourcePowers est;
-    if (scene_.sun.enabled) est.sun_w_um = scene_.sun.irradiance(node_.wavelength_um) * disc_area_;
+    const bool sun = scene_.sun.enabled && settings.sun_photons;
+    if (sun) est.sun_w_um = scene_.sun.irradiance(node_.wavelength_um) * disc_area_;
     double sum = 0;
     MediumPoint scratch;
     for (int i = 0; i < kEnvironmentPilot; ++i) {
@@ -289,7 +290,7 @@ class PhotonSources {
     }
     est.environment_w_um = sum / kEnvironmentPilot;
     est.emission_w_um = lattice_.estimated_power() * emission_share_;
-    if (period_ > 0.0 && scene_.sun.enabled)  // through the P × P square of the top face
+    if (period_ > 0.0 && sun)  // through the P × P square of the top face
       est.sun_w_um =
           scene_.sun.irradiance(node_.wavelength_um) * scene_.sun.direction().z * period_ * period_;
     return est;

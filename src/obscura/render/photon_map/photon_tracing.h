@@ -86,6 +86,12 @@ struct PhotonTracingSettings {
   // power a sky photon's first collision took from its straight line to a
   // surface (the radiance cache's ground light).
   bool surface_deposits = false;
+  // Launch the sun's photons. Off where none could add to what is kept: in a
+  // medium that does not scatter an unscattered sun photon is stored
+  // nowhere and deposits nothing (its light on surfaces is in their own
+  // radiance), so the others take its share of the count (the radiance
+  // cache's nodes where σs = 0).
+  bool sun_photons = true;
 };
 
 // Spectral powers (W µm⁻¹) per source kind.

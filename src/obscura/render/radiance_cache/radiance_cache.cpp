@@ -433,6 +433,19 @@ void RadianceCache::splat(const Scene& scene, const SpectralNode& node, int inde
   tracing.absorb_by_weight = true;
   // The cloud's light on the ground (ground_light.h).
   tracing.surface_deposits = GroundLight::has_ground(scene) && !lattice_.periodic();
+  // Where the medium does not scatter at this node (an absorbing smoke in
+  // the infrared), σs J is zero whatever J: the photons' flights would be
+  // splatted for nothing, and the light channels stay zero. The photons
+  // still carry the cloud's light on the ground (its emission, its shadow on
+  // the sky's light) in their deposits, which the sun's photons never make
+  // (they cannot scatter), so the others take their share; without ground
+  // the photons carry nothing the images read.
+  const bool scatters = node_scatters(index);
+  if (!scatters) {
+    if (!tracing.surface_deposits) return;
+    tracing.flights = false;
+    tracing.sun_photons = false;
+  }
   // One block of 2^40 photon streams per spectral node, above the pixels'.
   const std::uint64_t base = (static_cast<std::uint64_t>(index) + 1) << 40;
   TracedPhotons traced = trace_photons(scene, node, base, tracing);
@@ -443,6 +456,7 @@ void RadianceCache::splat(const Scene& scene, const SpectralNode& node, int inde
         GroundLight(scene, traced.deposits, sphere.center, 2.0 * sphere.radius_m);
   }
   photon_seconds += seconds_since(t0);
+  if (!scatters) return;
 
   t0 = std::chrono::steady_clock::now();
   const std::size_t slots = lattice_.slot_count();
@@ -485,6 +499,19 @@ void RadianceCache::splat(const Scene& scene, const SpectralNode& node, int inde
   }
   normalise(index, node.lerp(), kernel_moments, sum, per_slot, r, scene.settings.threads);
   splat_seconds += seconds_since(t0);
+}
+
+bool RadianceCache::node_scatters(int index) const {
+  // Where the records do not hold the medium, the collisions' splat finds no
+  // photon in a medium that does not scatter (each is absorbed at its first
+  // collision) and costs nothing.
+  if (!volume_.has_medium()) return true;
+  const std::size_t slots = lattice_.slot_count();
+  const std::size_t stride = static_cast<std::size_t>(volume_.stride());
+  const float* records = volume_.records(index);
+  for (std::size_t slot = 0; slot < slots; ++slot)
+    if (records[slot * stride + record::kSigmaS] != 0.0f) return true;
+  return false;
 }
 
 void RadianceCache::normalise(int index, const SpectralLerp& lerp,

@@ -113,6 +113,9 @@ class RadianceCache {
   std::vector<float> kernel_scattering(const Scene& scene) const;
   void splat(const Scene& scene, const SpectralNode& node, int index,
              const std::vector<float>& kernel_moments);
+  // Whether the medium scatters anywhere at spectral node `index` (σs ≠ 0 in
+  // some record; true where the records do not hold the medium).
+  bool node_scatters(int index) const;
   // Spectral node `index`'s light channels from the splat's `sum`
   // (per_slot values per slot): each divided by ∫ K σs dV and moved from its
   // kernel's σs-weighted centroid to its node.
