@@ -93,12 +93,13 @@ TEST(GroundLight, AnAbsorbingCloudTakesSkyLightAndASunlitOneAddsLight) {
   }
 }
 
-// In a cloud that does not scatter the sun's photons deposit nothing (the
-// radiance cache then launches none: sun_photons false), so leaving them out
-// gives the others their share and the same ground light in expectation:
-// the deposits' sums with and without agree within 4 standard errors (each
-// photon deposits once at most, so a sum's variance is Σ d² − (Σ d)²/n).
-TEST(GroundLight, WithoutScatteringTheSunsPhotonsAddNothing) {
+// In a cloud that does not scatter the sun's photons and the environment's
+// from surfaces deposit nothing (the radiance cache then launches none:
+// sun_photons and surface_photons false), so leaving them out gives the
+// sky's their share and the same ground light in expectation: the deposits'
+// sums with and without agree within 4 standard errors (each photon
+// deposits once at most, so a sum's variance is Σ d² − (Σ d)²/n).
+TEST(GroundLight, WithoutScatteringOnlyTheSkysPhotonsAddToIt) {
   const SpectralNodes nodes(BandQuadrature(Band::flat("b", 0.499, 0.501), 1, 0.0), {0.5});
   Scene scene = cloud_over_ground(1.0, 0.0);
   scene.sky = Sky::blackbody(1700.0, false);  // about the sun's power at 0.5 µm
@@ -110,10 +111,15 @@ TEST(GroundLight, WithoutScatteringTheSunsPhotonsAddNothing) {
   with_sun.absorb_by_weight = true;
   PhotonTracingSettings without = with_sun;
   without.sun_photons = false;
+  without.surface_photons = false;
   const TracedPhotons a = trace_photons(scene, nodes.nodes()[0], 1ull << 40, with_sun);
   const TracedPhotons b = trace_photons(scene, nodes.nodes()[0], 1ull << 40, without);
   EXPECT_GT(a.launched_count[0], 10000);  // the sun takes a good share…
   EXPECT_EQ(b.launched_count[0], 0);      // … or none
+  // The environment's power without the ground's and the box's light (the
+  // grey ground reflects the sky).
+  EXPECT_LT(b.estimated.environment_w_um, 0.9 * a.estimated.environment_w_um);
+  EXPECT_GT(b.estimated.environment_w_um, 0.3 * a.estimated.environment_w_um);
   EXPECT_EQ(b.launched_count[1] + b.launched_count[2], without.photons);
   const auto sum_and_variance = [](const TracedPhotons& t) {
     const double n =

@@ -286,7 +286,7 @@ class PhotonSources {
     MediumPoint scratch;
     for (int i = 0; i < kEnvironmentPilot; ++i) {
       Rng rng(settings.seed, stream_base + (1ull << 38) + static_cast<std::uint64_t>(i));
-      sum += environment(rng, scratch).power();
+      sum += environment(rng, scratch, settings.surface_photons).power();
     }
     est.environment_w_um = sum / kEnvironmentPilot;
     est.emission_w_um = lattice_.estimated_power() * emission_share_;
@@ -329,8 +329,9 @@ class PhotonSources {
   // ground in equilibrium with the sky, J read 16 % low; docs/physics.md.)
   // A line that misses the box keeps its one photon from behind p, which
   // meets no medium, so that without surfaces the launched power is the
-  // environment's through the disc.
-  EnvironmentLaunches environment(Rng& rng, MediumPoint& scratch) const {
+  // environment's through the disc. Without `surfaces` the pieces whose light
+  // leaves a surface launch nothing (PhotonTracingSettings::surface_photons).
+  EnvironmentLaunches environment(Rng& rng, MediumPoint& scratch, bool surfaces) const {
     EnvironmentLaunches out;
     if (period_ > 0.0) {
       out.add(periodic_environment(rng));
@@ -342,7 +343,7 @@ class PhotonSources {
     const Ray line{p - d * before_p, d};
     double t_in = 0.0, t_out = std::numeric_limits<double>::infinity();
     if (!scene_.medium->bounds().intersect(line, t_in, t_out) || !(t_out > t_in)) {
-      out.add(from_behind(line, before_p, rng, scratch));
+      if (auto l = from_behind(line, before_p, rng, scratch, surfaces)) out.add(*l);
       return out;
     }
     // Pieces shorter than this are dropped: a line through a corner of two
@@ -358,9 +359,13 @@ class PhotonSources {
       const double end = crosses ? hit.t : t_out;
       // No light travels inside a solid (below the ground, inside a box).
       const double middle = 0.5 * (start + end);
-      if (end - start > shortest && !inside_a_solid(scene_.surfaces, line.at(middle)))
-        out.add(behind ? leaving(*behind, line.at(behind->t), d, rng, scratch)
-                       : from_behind(line, middle, rng, scratch));
+      if (end - start > shortest && !inside_a_solid(scene_.surfaces, line.at(middle))) {
+        if (behind) {
+          if (surfaces) out.add(leaving(*behind, line.at(behind->t), d, rng, scratch));
+        } else if (auto l = from_behind(line, middle, rng, scratch, surfaces)) {
+          out.add(*l);
+        }
+      }
       if (!crosses) break;
       // Seen from beyond it, the crossing's normal faces the other way.
       behind = SurfaceHit{hit.t, -hit.normal, hit.surface};
@@ -388,15 +393,18 @@ class PhotonSources {
  private:
   // The photon carrying the radiance that travels along `line` through its
   // point at parameter s: from the first surface behind that point, with the
-  // surface's radiance, or from the line's start (beyond the sphere) with
-  // the sky's.
-  Launch from_behind(const Ray& line, double s, Rng& rng, MediumPoint& scratch) const {
+  // surface's radiance (none without `surfaces`), or from the line's start
+  // (beyond the sphere) with the sky's.
+  std::optional<Launch> from_behind(const Ray& line, double s, Rng& rng, MediumPoint& scratch,
+                                    bool surfaces) const {
     const Vec3& d = line.direction;
     SurfaceHit hit;
     const Ray back{line.at(s), -d};
     if (intersect_surfaces(scene_.surfaces, back, 0.0, std::numeric_limits<double>::infinity(),
-                           hit))
+                           hit)) {
+      if (!surfaces) return std::nullopt;
       return leaving(hit, back.at(hit.t), d, rng, scratch);
+    }
     Launch l;
     l.ray = line;
     l.from_sky = true;
@@ -541,7 +549,7 @@ TracedPhotons trace_photons(const Scene& scene, const SpectralNode& node, std::u
         source = kSun;
         l = sources.sun(rng, n_sun);
       } else if (i < n_sun + n_env) {
-        EnvironmentLaunches pieces = sources.environment(rng, scratch);
+        EnvironmentLaunches pieces = sources.environment(rng, scratch, settings.surface_photons);
         for (int k = 0; k < pieces.count; ++k) {
           Launch& piece = pieces.launch[static_cast<std::size_t>(k)];
           piece.power /= n_env;

@@ -92,6 +92,12 @@ struct PhotonTracingSettings {
   // radiance), so the others take its share of the count (the radiance
   // cache's nodes where σs = 0).
   bool sun_photons = true;
+  // Launch the environment's photons whose light leaves a surface (the
+  // pieces of a line that start at one). Off likewise where the medium does
+  // not scatter: such a photon is absorbed at its first collision or goes
+  // on unscattered, and deposits nothing; the sky's pieces, whose first
+  // collision takes their light off the ground beyond, stay.
+  bool surface_photons = true;
 };
 
 // Spectral powers (W µm⁻¹) per source kind.

@@ -437,14 +437,16 @@ void RadianceCache::splat(const Scene& scene, const SpectralNode& node, int inde
   // the infrared), σs J is zero whatever J: the photons' flights would be
   // splatted for nothing, and the light channels stay zero. The photons
   // still carry the cloud's light on the ground (its emission, its shadow on
-  // the sky's light) in their deposits, which the sun's photons never make
-  // (they cannot scatter), so the others take their share; without ground
-  // the photons carry nothing the images read.
+  // the sky's light) in their deposits, which neither the sun's photons
+  // nor the environment's from surfaces ever make (they cannot scatter), so
+  // the sky's and the emission's take their share; without ground the
+  // photons carry nothing the images read.
   const bool scatters = node_scatters(index);
   if (!scatters) {
     if (!tracing.surface_deposits) return;
     tracing.flights = false;
     tracing.sun_photons = false;
+    tracing.surface_photons = false;
   }
   // One block of 2^40 photon streams per spectral node, above the pixels'.
   const std::uint64_t base = (static_cast<std::uint64_t>(index) + 1) << 40;
