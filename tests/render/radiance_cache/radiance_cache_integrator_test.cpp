@@ -135,12 +135,14 @@ TEST(RadianceCacheIntegrator, ACloudThatDoesNotScatterSplatsNoFlights) {
           .nodes());
   const RadianceCache over_ground(scene, nodes);
   EXPECT_EQ(over_ground.photons_stored(), 0u);
+  EXPECT_GT(over_ground.photon_seconds, 0.0);  // traced, for the ground
   // Its emission onto the ground, less its shadow on the sky's light.
   EXPECT_NE(over_ground.ground(0).total_power_w_um(), 0.0);
 
   scene.surfaces.clear();
   const RadianceCache alone(scene, nodes);
   EXPECT_EQ(alone.photons_stored(), 0u);
+  EXPECT_EQ(alone.photon_seconds, 0.0);  // not traced at all
   Scene ea = sunlit_scene(RenderMethod::kEmissionAbsorption);
   ea.surfaces.clear();
   ea.medium = scene.medium;
