@@ -78,9 +78,9 @@ struct RadianceCacheSettings {
   long long photons_per_node = 1000000;  // launched per spectral node
   // Per band (its name as the sensors give it: a preset or "LO:HI"): the
   // photons launched per spectral node of that band instead, where it needs
-  // fewer or more than the others (a thermal band, whose light is mostly the
-  // exact emission, converges with far fewer: docs/performance.md). A node
-  // that two bands share takes the larger count.
+  // fewer or more than the others (a band where the smoke scatters little or
+  // not at all converges with far fewer: docs/performance.md). A node that
+  // two bands share takes the larger count.
   std::map<std::string, long long> photons_by_band;
   int sh_degree = 2;  // spherical-harmonic degree of the incident radiance, 1–3
   // Splatting kernel half-width, in lattice spacings: a tent of that

@@ -342,12 +342,13 @@ void check_photon_memory(const Scene& scene, const JsonObject& root) {
 // Every band that /render/radiance_cache/photons names is a band of some
 // sensor: a count for a band nobody renders is a typo or a stale scene.
 void check_bands_named(const Scene& scene, const std::string& file) {
-  for (const auto& [band, count] : scene.settings.radiance_cache.photons_by_band) {
-    std::vector<std::string> names;
-    for (const Sensor& s : scene.sensors)
-      for (const Band& b : s.bands)
-        if (std::find(names.begin(), names.end(), b.name()) == names.end())
-          names.push_back(b.name());
+  const auto& by_band = scene.settings.radiance_cache.photons_by_band;
+  if (by_band.empty()) return;
+  std::vector<std::string> names;  // the sensors' bands, in order, once each
+  for (const Sensor& s : scene.sensors)
+    for (const Band& b : s.bands)
+      if (std::find(names.begin(), names.end(), b.name()) == names.end()) names.push_back(b.name());
+  for (const auto& [band, count] : by_band) {
     if (std::find(names.begin(), names.end(), band) == names.end())
       throw InputError(file, "/render/radiance_cache/photons/" + band,
                        fmt::format("no sensor renders a band '{}' (the sensors' bands: {}; "

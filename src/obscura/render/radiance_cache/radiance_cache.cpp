@@ -148,18 +148,13 @@ RadianceCache::RadianceCache(const Scene& scene, const std::vector<SpectralNode>
 std::vector<long long> photons_of_nodes(const Scene& scene, const DistinctNodes& distinct) {
   const RadianceCacheSettings& settings = scene.settings.radiance_cache;
   std::vector<long long> photons(distinct.nodes.size(), 0);
-  // Spectra that are not the scene's sensors' (a validation case's one
-  // band, with no sensor) take photons_per_node.
-  const auto band_name = [&](std::size_t s, std::size_t b) -> const std::string* {
-    return s < scene.sensors.size() && b < scene.sensors[s].bands.size()
-               ? &scene.sensors[s].bands[b].name()
-               : nullptr;
-  };
   for (std::size_t s = 0; s < distinct.index.size(); ++s)
     for (std::size_t b = 0; b < distinct.index[s].size(); ++b) {
-      const std::string* name = band_name(s, b);
-      const auto named =
-          name ? settings.photons_by_band.find(*name) : settings.photons_by_band.end();
+      // Spectra that are not the scene's sensors' (a validation case's one
+      // band, with no sensor) take photons_per_node.
+      const bool of_sensor = s < scene.sensors.size() && b < scene.sensors[s].bands.size();
+      const auto named = of_sensor ? settings.photons_by_band.find(scene.sensors[s].bands[b].name())
+                                   : settings.photons_by_band.end();
       const long long count =
           named == settings.photons_by_band.end() ? settings.photons_per_node : named->second;
       for (const int u : distinct.index[s][b])
