@@ -15,8 +15,8 @@ quadrature. Nothing is asserted (docs/performance.md, docs/validation.md).
 
     PYTHONPATH=build/release/python /usr/bin/python3 bench/demo_accuracy.py \
         [--size 64x32] [--time 8] [--reference-spp 1024] [--reference-file F]
-        [--method radiance-cache] [--photons N] [--photons-by-band BAND=N,...]
-        [--spp 4] [--sh-degree D]
+        [--method radiance-cache|photonmap] [--photons N] [--photons-by-band BAND=N,...]
+        [--spp 4] [--adaptive-threshold T] [--sh-degree D]
         [--estimate tracks|collisions]
         [--voxel M] [--kernel-radius R] [--seed N] [--no-sensor-peaks] [--save F]
 """
@@ -57,6 +57,9 @@ def main():
     # edge (the horizon, the cloud's rim) crosses it (docs/validation.md).
     parser.add_argument("--spp", type=int, default=4,
                         help="the method's samples per pixel (default 4)")
+    parser.add_argument("--adaptive-threshold", type=float, default=0.0,
+                        help="the method's /render/adaptive_threshold (the spp samples only "
+                             "where a neighbouring pixel's centre differs by more)")
     parser.add_argument("--sh-degree", type=int, default=0)
     parser.add_argument("--estimate", default="")
     parser.add_argument("--voxel", type=float, default=0.0)
@@ -130,8 +133,13 @@ def main():
             if args.no_sensor_peaks:
                 cache["sensor_peaks"] = False
             extra = {"radiance_cache": cache}
+        if args.method == "photonmap":
+            # The demo's settings until 2026-12-07 (docs/demo.md): k = 30.
+            extra = {"photon_map": {"photons": args.photons or 200000, "k": 30}}
         if args.seed:
             extra["seed"] = args.seed
+        if args.adaptive_threshold > 0:
+            extra["adaptive_threshold"] = args.adaptive_threshold
         scene = scene_for(args.method, args.spp, extra)
         start = time.perf_counter()
         result = obscura.render(scene, time=args.time, threads=args.threads)
@@ -145,7 +153,7 @@ def main():
         print(f"demo frame at t = {args.time} s, {width}x{height} px; reference: path tracer, "
               f"{args.reference_spp} spp, {reference_s:.1f} s; {args.method}: {seconds:.2f} s")
         print(f"{'sensor':12} {'band':10} {'target ref':>11} {'target':>11} {'diff':>8} "
-              f"{'RMSE (4x4)':>11} {'ref noise':>10}")
+              f"{'RMSE (4x4)':>11} {'ref noise':>10} {'refined':>8}")
         for (sensor, band), ref in reference.items():
             got = np.array(result[sensor].bands[band].radiance, dtype=np.float64)
             a, b = blur4(ref), blur4(got)
@@ -157,8 +165,11 @@ def main():
             ref_noise = np.sqrt(np.mean((blurred_stderr[keep] / a[keep]) ** 2))
             t_ref, t_got = reference_targets[(sensor, band)], targets[(sensor, band)]
             diff = t_got / t_ref - 1.0 if t_ref else float("nan")
+            # The share of pixels that took more than one sample (all of them
+            # without an adaptive threshold).
+            refined = np.mean(np.array(result[sensor].samples_per_pixel) > 1)
             print(f"{sensor:12} {band:10} {t_ref:11.5g} {t_got:11.5g} {diff:8.4f} {rmse:11.4f} "
-                  f"{ref_noise:10.4f}")
+                  f"{ref_noise:10.4f} {refined:8.3f}")
 
 
 if __name__ == "__main__":

@@ -10,11 +10,12 @@
 //                        [--prepare examples/smoke-screen/prepare.json]
 //                        [--times 0:30:6] [--threads 0]
 //                        [--method M] [--size WxH] [--photons N] [--spp N]
-//                        [--photons-by-band BAND=N[,BAND=N…]]
+//                        [--photons-by-band BAND=N[,BAND=N…]] [--adaptive-threshold T]
 // --method, --size (every sensor), --photons (per spectral node, photon
 // map or radiance cache), --photons-by-band (the radiance cache's count for
-// the nodes of those bands, /render/radiance_cache/photons) and --spp
-// (samples per pixel) override the scene's. Also prints the mean
+// the nodes of those bands, /render/radiance_cache/photons), --spp
+// (samples per pixel) and --adaptive-threshold (/render/adaptive_threshold:
+// the samples only where the image has an edge) override the scene's. Also prints the mean
 // and the peak wall time per frame (all sensors). For the radiance cache the per-frame cache
 // (shared by the sensors) is charged to the first sensor. Run from the repository root (default
 // paths are relative to it).
@@ -61,6 +62,7 @@ int main(int argc, char** argv) {
   long long photons = 0;
   std::map<std::string, long long> photons_by_band;
   int spp = 0;
+  double adaptive_threshold = -1.0;
   std::string method;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -96,6 +98,12 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "bench_screening_demo: --spp expects a count of at least 1\n");
         return 2;
       }
+    } else if (a == "--adaptive-threshold" && has_value) {
+      adaptive_threshold = std::atof(argv[++i]);
+      if (!(adaptive_threshold >= 0.0 && adaptive_threshold < 1.0)) {
+        std::fprintf(stderr, "bench_screening_demo: --adaptive-threshold expects [0, 1)\n");
+        return 2;
+      }
     } else if (a == "--size" && has_value) {
       if (std::sscanf(argv[++i], "%dx%d", &width, &height) != 2 || width < 1 || height < 1) {
         std::fprintf(stderr, "bench_screening_demo: --size expects WxH\n");
@@ -110,7 +118,7 @@ int main(int argc, char** argv) {
       std::fprintf(stderr,
                    "usage: bench_screening_demo [--scene S] [--prepare P] [--times A:B:STEP] "
                    "[--threads N] [--method M] [--size WxH] [--photons N] [--spp N] "
-                   "[--photons-by-band BAND=N[,BAND=N…]]\n");
+                   "[--photons-by-band BAND=N[,BAND=N…]] [--adaptive-threshold T]\n");
       return 2;
     }
   }
@@ -150,6 +158,7 @@ int main(int argc, char** argv) {
     for (const auto& [band, n] : photons_by_band)
       scene.settings.radiance_cache.photons_by_band[band] = n;
     if (spp > 0) scene.settings.samples_per_pixel = spp;
+    if (adaptive_threshold >= 0.0) scene.settings.adaptive_threshold = adaptive_threshold;
     std::vector<double> times;
     for (double t = t0; t <= t1 + 1e-9 * step; t += step) times.push_back(t);
     const int frames = static_cast<int>(times.size());

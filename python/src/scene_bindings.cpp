@@ -52,6 +52,7 @@ py::dict settings_dict(const RenderSettings& r) {
   py::dict d;
   d["method"] = std::string(render_method_name(r.method));
   d["samples_per_pixel"] = r.samples_per_pixel;
+  d["adaptive_threshold"] = r.adaptive_threshold;
   d["target_relative_stderr"] = r.target_relative_stderr;
   d["max_samples_per_pixel"] = r.max_samples_per_pixel;
   d["spectral_nodes_per_band"] = r.spectral_nodes_per_band;

@@ -1,5 +1,5 @@
 // `scripts/demo --quick` (CI's variant of `make demo`) run end to end: the
-// preparation, the photon-map frames of four sensors over 30 s, metrics,
+// preparation, the radiance-cache frames of four sensors over 30 s, metrics,
 // plots and the contact sheet must exist and not be trivial — images that
 // vary across pixels, and metrics that change with time as the screen builds
 // up and drifts away.

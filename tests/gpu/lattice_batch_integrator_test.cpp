@@ -63,6 +63,20 @@ std::unique_ptr<LatticeBatchIntegrator> on_host(const Scene& scene, const FrameS
                                                   std::make_unique<HostExecutor>(2));
 }
 
+// Images a (batched) and b (the CPU's) of sensor s are the same to the bit,
+// with the same samples and cells.
+void expect_same_images(const SensorImage& a, const SensorImage& b, int s) {
+  ASSERT_EQ(a.bands.size(), b.bands.size());
+  for (std::size_t i = 0; i < a.bands.size(); ++i) {
+    EXPECT_EQ(a.bands[i].radiance, b.bands[i].radiance) << "sensor " << s << " band " << i;
+    EXPECT_EQ(a.bands[i].transmittance, b.bands[i].transmittance);
+    EXPECT_EQ(a.bands[i].apparent_temperature, b.bands[i].apparent_temperature);
+  }
+  EXPECT_EQ(a.samples_per_pixel, b.samples_per_pixel);
+  EXPECT_EQ(a.stats.rays, b.stats.rays);
+  EXPECT_EQ(a.stats.segments, b.stats.segments);
+}
+
 TEST(LatticeBatchIntegrator, EmissionAbsorptionImagesEqualTheCpusBitForBit) {
   const Scene scene = grid_scene(RenderMethod::kEmissionAbsorption);
   const FrameSpectra spectra = frame_spectra(scene);
@@ -72,15 +86,7 @@ TEST(LatticeBatchIntegrator, EmissionAbsorptionImagesEqualTheCpusBitForBit) {
   for (int s = 0; s < 2; ++s) {
     const SensorImage a = render_sensor(scene, s, *batched, spectra);
     const SensorImage b = render_sensor(scene, s, *cpu, spectra);
-    ASSERT_EQ(a.bands.size(), b.bands.size());
-    for (std::size_t i = 0; i < a.bands.size(); ++i) {
-      EXPECT_EQ(a.bands[i].radiance, b.bands[i].radiance) << "sensor " << s << " band " << i;
-      EXPECT_EQ(a.bands[i].transmittance, b.bands[i].transmittance);
-      EXPECT_EQ(a.bands[i].apparent_temperature, b.bands[i].apparent_temperature);
-    }
-    EXPECT_EQ(a.samples_per_pixel, b.samples_per_pixel);
-    EXPECT_EQ(a.stats.rays, b.stats.rays);
-    EXPECT_EQ(a.stats.segments, b.stats.segments);
+    expect_same_images(a, b, s);
     EXPECT_GT(a.stats.segments, 1000u);  // the rays cross the cloud
   }
   // One ray on its own (BatchIntegrator::band_radiance) is the CPU's too.
@@ -96,6 +102,35 @@ TEST(LatticeBatchIntegrator, EmissionAbsorptionImagesEqualTheCpusBitForBit) {
   }
   EXPECT_LT(t0[0], 1.0);
   EXPECT_EQ(ws0->segments, ws1->segments);
+}
+
+// Samples only where the image has an edge (render/adaptive_samples.h): the
+// batched path takes the same centres, refines the same pixels and gives
+// the CPU's pixels to the bit, for a whole image and for a process's share
+// of its rows.
+TEST(LatticeBatchIntegrator, AdaptiveSamplesEqualTheCpusBitForBit) {
+  Scene scene = grid_scene(RenderMethod::kEmissionAbsorption);
+  scene.settings.adaptive_threshold = 0.05;
+  const FrameSpectra spectra = frame_spectra(scene);
+  const auto batched = on_host(scene, spectra);
+  const auto cpu = make_integrator(scene, spectra);
+  RenderOptions share;
+  share.row_offset = 1;
+  share.row_stride = 2;
+  for (const RenderOptions& options : {RenderOptions{}, share})
+    for (int s = 0; s < 2; ++s) {
+      const SensorImage a = render_sensor(scene, s, *batched, spectra, options);
+      const SensorImage b = render_sensor(scene, s, *cpu, spectra, options);
+      expect_same_images(a, b, s);
+      // Both kinds of pixel in the rendered rows.
+      int refined = 0, centred = 0;
+      for (std::size_t p = 0; p < a.samples_per_pixel.size(); ++p) {
+        refined += a.samples_per_pixel[p] == 4;
+        centred += a.samples_per_pixel[p] == 1;
+      }
+      EXPECT_GT(refined, 10) << "sensor " << s;
+      EXPECT_GT(centred, 10) << "sensor " << s;
+    }
 }
 
 TEST(LatticeBatchIntegrator, RadianceCacheImagesEqualTheCpusToTheRecordsRounding) {

@@ -90,6 +90,35 @@ TEST(RenderSettings, TheGpuTakesTheLatticeMethodsOnly) {
   EXPECT_TRUE(testing::contains(e.detail(), "\"cell\"")) << e.what();
 }
 
+// The adaptive threshold refines a deterministic method's pixels to
+// samples_per_pixel samples (render/renderer.h): refused where it would do
+// nothing or has no meaning, by name, with what to change.
+TEST(RenderSettings, TheAdaptiveThresholdIsForDeterministicMethodsWithSeveralSamples) {
+  EXPECT_EQ(parse(nlohmann::json::object()).adaptive_threshold, 0.0);
+  EXPECT_EQ(parse({{"samples_per_pixel", 4}, {"adaptive_threshold", 0.02}}).adaptive_threshold,
+            0.02);
+  EXPECT_EQ(
+      parse({{"method", "radiance-cache"}, {"samples_per_pixel", 4}, {"adaptive_threshold", 0.05}})
+          .adaptive_threshold,
+      0.05);
+  InputError e = parse_error({{"samples_per_pixel", 4}, {"adaptive_threshold", 1.5}});
+  EXPECT_EQ(e.field(), "/render/adaptive_threshold");
+  EXPECT_TRUE(testing::contains(e.detail(), "[0, 1)")) << e.what();
+  e = parse_error({{"adaptive_threshold", 0.02}});  // one sample per pixel
+  EXPECT_EQ(e.field(), "/render/adaptive_threshold");
+  EXPECT_TRUE(testing::contains(e.detail(), "samples_per_pixel")) << e.what();
+  for (const char* method : {"path-tracer", "photonmap"}) {
+    e = parse_error({{"method", method}, {"samples_per_pixel", 4}, {"adaptive_threshold", 0.02}});
+    EXPECT_EQ(e.field(), "/render/adaptive_threshold");
+    EXPECT_TRUE(testing::contains(e.detail(), "target_relative_stderr") &&
+                testing::contains(e.detail(), method))
+        << e.what();
+  }
+  EXPECT_EQ(
+      parse({{"device", "gpu"}, {"samples_per_pixel", 4}, {"adaptive_threshold", 0.02}}).device,
+      RenderDevice::kGpu);
+}
+
 // The radiance cache's forward peak towards narrow sensors is on unless
 // the scene turns it off; a value that is not a boolean is refused by name.
 TEST(RenderSettings, TheSensorPeaksAreOnByDefault) {

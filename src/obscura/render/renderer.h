@@ -9,6 +9,13 @@
 // methods get standard errors and, with a target relative standard error,
 // further rounds of samples per pixel.
 //
+// Deterministic methods may refine only where the image has an edge
+// (RenderSettings::adaptive_threshold): every pixel's centre first, then the
+// full stratified samples in the pixels whose centre differs from a
+// neighbour's; the other pixels keep their centre, which for an image smooth
+// across a pixel differs from the pixel's mean by its curvature only. The
+// image's samples_per_pixel says which pixels took which.
+//
 // An integrator that marches whole images (render/batch_integrator.h: the
 // GPU's) gets every camera ray of a batch of rows at once, after the CPU has
 // found their first surfaces; the renderer then adds the background and the

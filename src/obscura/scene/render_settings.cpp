@@ -146,6 +146,15 @@ void check_render_settings(const RenderSettings& s, const SettingError& error) {
   require(s.relative_tolerance >= 1e-12 && s.relative_tolerance <= 0.1, "relative_tolerance",
           "must lie in [1e-12, 0.1]");
   require(s.threads >= 0 && s.threads <= 4096, "threads", "must lie in [0, 4096] (0: all cores)");
+  require(s.adaptive_threshold >= 0 && s.adaptive_threshold < 1, "adaptive_threshold",
+          "must lie in [0, 1) (0: every pixel takes samples_per_pixel samples)");
+  require(s.adaptive_threshold == 0 || !method_is_monte_carlo(s.method), "adaptive_threshold",
+          fmt::format("applies to the deterministic methods only (\"emission-absorption\", "
+                      "\"radiance-cache\"; \"{}\" takes target_relative_stderr)",
+                      render_method_name(s.method)));
+  require(s.adaptive_threshold == 0 || s.samples_per_pixel > 1, "adaptive_threshold",
+          "refines pixels to samples_per_pixel samples, which is 1 here: set samples_per_pixel "
+          "above 1 or leave adaptive_threshold out");
   require(s.target_relative_stderr == 0 || method_is_monte_carlo(s.method),
           "target_relative_stderr",
           "applies to the Monte Carlo methods only (set /render/method to \"path-tracer\" or "
@@ -220,6 +229,7 @@ RenderSettings parse_render_settings(JsonObject& r, RenderSettings s) {
   if (auto rc = method_object("radiance_cache", RenderMethod::kRadianceCache))
     parse_radiance_cache(*rc, s.radiance_cache);
   s.samples_per_pixel = saturate_int(r.integer_or("samples_per_pixel", s.samples_per_pixel));
+  s.adaptive_threshold = r.number_or("adaptive_threshold", s.adaptive_threshold);
   s.target_relative_stderr = r.number_or("target_relative_stderr", s.target_relative_stderr);
   s.max_samples_per_pixel =
       saturate_int(r.integer_or("max_samples_per_pixel", s.max_samples_per_pixel));

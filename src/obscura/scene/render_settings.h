@@ -118,6 +118,14 @@ struct RenderSettings {
   // Emission-absorption: 1 = the pixel centre, more = stratified jitter.
   // Monte Carlo methods: paths per pixel (each covering every spectral node).
   int samples_per_pixel = 1;
+  // Deterministic methods (emission-absorption, radiance-cache) with
+  // samples_per_pixel > 1: when > 0, every pixel first takes one sample at
+  // its centre, and only a pixel whose centre differs from a neighbour's (any
+  // of its 8) by more than this fraction of the larger band radiance, or by
+  // more than this in transmittance, in any band, takes the samples_per_pixel
+  // stratified samples (the same ones as without it); the others keep their
+  // centre. 0: every pixel takes samples_per_pixel (render/adaptive_samples.h).
+  double adaptive_threshold = 0.0;
   // Monte Carlo methods: when > 0, each pixel takes further rounds of
   // samples_per_pixel paths until the standard error of every band radiance is
   // at most this fraction of its mean, or max_samples_per_pixel is reached.
