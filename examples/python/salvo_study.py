@@ -17,8 +17,8 @@ the same second whatever the wind; how long it holds depends on it.
 
 The sweep renders with the path tracer at one sample per pixel: the screening
 metrics use the line-of-sight transmittance, which every method computes
-exactly, so a cheap render measures the same screening as the demo's photon
-map. Writes screening.png and screening.csv into the output folder.
+exactly, so a cheap render measures the same screening as the demo's radiance
+cache. Writes screening.png and screening.csv into the output folder.
 """
 import argparse
 import csv
