@@ -79,7 +79,10 @@ def main():
     with tempfile.TemporaryDirectory(prefix="obscura_accuracy_") as tmp:
         tmp = pathlib.Path(tmp)
         doc = prepare_demo(root, tmp, width, height)
-        render = {k: v for k, v in doc["render"].items() if k not in ("photon_map", "method")}
+        # The scene's method and the settings that belong to one method are
+        # set below per render; the rest (nodes per band, seed) stay.
+        render = {k: v for k, v in doc["render"].items()
+                  if k not in ("method", "photon_map", "radiance_cache", "adaptive_threshold")}
 
         def scene_for(method, spp, extra):
             d = dict(doc, render=dict(render, method=method, samples_per_pixel=spp, **extra))

@@ -16,6 +16,10 @@ ScopedSettings::ScopedSettings(Scene& scene, const SettingsOverride& o)
                        "unknown render method '" + *o.method +
                            "' (expected one of: " + render_method_names() + ")");
     s.method = *method;
+    // The adaptive threshold belongs to the deterministic methods, as a
+    // method's own settings do to it: a Monte Carlo method chosen for one
+    // call leaves it unused (it takes target_relative_stderr instead).
+    if (method_is_monte_carlo(s.method)) s.adaptive_threshold = 0.0;
     // The scene loader's rule, for a method chosen after loading.
     if (scene.sun.enabled && !method_scatters(s.method))
       throw InputError("", "method",

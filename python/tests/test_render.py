@@ -65,6 +65,19 @@ def test_same_seed_same_images_at_any_thread_count_and_another_seed_differs(scen
     assert scene.settings["method"] == "emission-absorption" and scene.settings["seed"] == 1
 
 
+def test_a_scene_with_an_adaptive_threshold_renders_with_a_monte_carlo_method(scene_dict):
+    scene_dict["render"].update({"samples_per_pixel": 4, "adaptive_threshold": 0.05})
+    scene = obscura.Scene.from_dict(scene_dict)
+    adaptive = obscura.render(scene)["ir"]
+    spp = np.asarray(adaptive.samples_per_pixel)
+    assert set(np.unique(spp)) == {1, 4}  # the cloud's edges refined, the clear sky not
+    # The path tracer for one call leaves the threshold unused, then it is back.
+    traced = obscura.render(scene, method="path-tracer", seed=3)["ir"]
+    assert (np.asarray(traced.samples_per_pixel) == 4).all()
+    assert scene.settings["adaptive_threshold"] == 0.05
+    np.testing.assert_array_equal(np.asarray(obscura.render(scene)["ir"].samples_per_pixel), spp)
+
+
 def test_progress_is_reported_and_its_exception_stops_the_render(scene_dict):
     scene = obscura.Scene.from_dict(scene_dict)
     seen = []
