@@ -112,7 +112,9 @@ def screening_metrics(scene=None, result=None, *, time=0.0, transmittance=None, 
       ``radiance`` the radiance, contrast and temperature figures are NaN.
 
     With a scene, its target mask, bands and "metrics" settings are used;
-    otherwise the keyword settings (the scene file's defaults). Returns a
+    otherwise the keyword settings (the scene file's defaults);
+    ``spectral_nodes_per_band`` is a count or ``{band: count, "*": count}``
+    as in a scene file, the quadrature each band's radiance was rendered with. Returns a
     dict: ``frames`` (one row per frame, sensor and band, with metrics.json's
     keys: time_s, sensor, band, transmittance_mean, screened_fraction,
     contrast, delta_t_k, ...), ``series`` (per sensor and band:

@@ -99,8 +99,31 @@ void drop_radiance_figures(std::vector<ScreeningMetrics>& rows) {
         m.background_apparent_temperature_k = m.delta_t_k = kNaN;
 }
 
+// spectral_nodes_per_band as Python gives it: a count for every band, or
+// {band: count, "*": count for the others} (the scene file's forms).
+RenderSettings spectral_nodes_from(const py::object& value) {
+  RenderSettings render;
+  auto count = [](const py::handle& h, const std::string& field) {
+    const int n = h.cast<int>();
+    if (n < 1 || n > 64) throw InputError("", field, "must lie in [1, 64]");
+    return n;
+  };
+  if (py::isinstance<py::dict>(value)) {
+    for (const auto& [key, n] : value.cast<py::dict>()) {
+      const std::string band = key.cast<std::string>();
+      if (band == "*")
+        render.spectral_nodes_per_band = count(n, "spectral_nodes_per_band/*");
+      else
+        render.spectral_nodes_by_band[band] = count(n, "spectral_nodes_per_band/" + band);
+    }
+  } else {
+    render.spectral_nodes_per_band = count(value, "spectral_nodes_per_band");
+  }
+  return render;
+}
+
 py::object screening(const std::vector<FrameInput>& frames, const MetricsSettings& settings,
-                     int nodes, double reference_time_s) {
+                     const RenderSettings& nodes, double reference_time_s) {
   std::vector<ScreeningMetrics> rows;
   std::vector<TargetMask> masks;
   for (const FrameInput& in : frames) {
@@ -125,8 +148,8 @@ py::object screening(const std::vector<FrameInput>& frames, const MetricsSetting
 void bind_analysis(py::module_& m) {
   m.def(
       "_screening_metrics",
-      [](const py::list& inputs, double threshold, double fraction, int margin, int nodes,
-         double reference_time_s) {
+      [](const py::list& inputs, double threshold, double fraction, int margin,
+         const py::object& nodes, double reference_time_s) {
         MetricsSettings settings;
         settings.transmittance_threshold = threshold;
         settings.screened_fraction = fraction;
@@ -136,7 +159,7 @@ void bind_analysis(py::module_& m) {
         if (!(fraction > 0 && fraction <= 1))
           throw InputError("", "screened_fraction", "must lie in (0, 1]");
         if (margin < 0) throw InputError("", "background_margin_px", "must be >= 0");
-        if (nodes < 1) throw InputError("", "spectral_nodes_per_band", "must be >= 1");
+        const RenderSettings render = spectral_nodes_from(nodes);
         std::vector<FrameInput> frames;
         for (const py::handle& h : inputs) {
           const py::dict d = py::reinterpret_borrow<py::dict>(h);
@@ -154,7 +177,7 @@ void bind_analysis(py::module_& m) {
           if (!in.target) throw InputError("", "target", "expected an array");
           frames.push_back(std::move(in));
         }
-        return screening(frames, settings, nodes, reference_time_s);
+        return screening(frames, settings, render, reference_time_s);
       },
       py::arg("inputs"), py::arg("transmittance_threshold"), py::arg("screened_fraction"),
       py::arg("background_margin_px"), py::arg("spectral_nodes_per_band"),
@@ -169,7 +192,15 @@ void bind_analysis(py::module_& m) {
         d["transmittance_threshold"] = scene.metrics.transmittance_threshold;
         d["screened_fraction"] = scene.metrics.screened_fraction;
         d["background_margin_px"] = scene.metrics.background_margin_px;
-        d["spectral_nodes_per_band"] = scene.settings.spectral_nodes_per_band;
+        if (scene.settings.spectral_nodes_by_band.empty()) {
+          d["spectral_nodes_per_band"] = scene.settings.spectral_nodes_per_band;
+        } else {
+          py::dict nodes;
+          nodes["*"] = scene.settings.spectral_nodes_per_band;
+          for (const auto& [band, n] : scene.settings.spectral_nodes_by_band)
+            nodes[band.c_str()] = n;
+          d["spectral_nodes_per_band"] = nodes;
+        }
         d["reference_time_s"] = screening_reference_time_s(scene);
         py::dict targets, bands;
         for (const Sensor& s : scene.sensors) {

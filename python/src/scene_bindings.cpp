@@ -55,7 +55,14 @@ py::dict settings_dict(const RenderSettings& r) {
   d["adaptive_threshold"] = r.adaptive_threshold;
   d["target_relative_stderr"] = r.target_relative_stderr;
   d["max_samples_per_pixel"] = r.max_samples_per_pixel;
-  d["spectral_nodes_per_band"] = r.spectral_nodes_per_band;
+  if (r.spectral_nodes_by_band.empty()) {
+    d["spectral_nodes_per_band"] = r.spectral_nodes_per_band;
+  } else {
+    py::dict nodes;  // the scene file's form: "*" for the bands not named
+    nodes["*"] = r.spectral_nodes_per_band;
+    for (const auto& [band, n] : r.spectral_nodes_by_band) nodes[band.c_str()] = n;
+    d["spectral_nodes_per_band"] = nodes;
+  }
   d["relative_tolerance"] = r.relative_tolerance;
   d["camera_sees_sun"] = r.camera_sees_sun;
   d["seed"] = r.seed;

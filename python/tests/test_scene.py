@@ -20,6 +20,10 @@ def test_a_loaded_scene_shows_its_sensors_bands_and_settings(scene_dict):
     assert s.settings["spectral_nodes_per_band"] == 8  # the default, filled in
     assert s.has_target
     assert s.to_dict() == json.loads(json.dumps(scene_dict))
+    # A count per band comes back in the scene file's form.
+    scene_dict["render"]["spectral_nodes_per_band"] = {"lwir": 1, "*": 4}
+    s = obscura.Scene.from_dict(scene_dict)
+    assert s.settings["spectral_nodes_per_band"] == {"*": 4, "lwir": 1}
 
 
 def test_a_typo_gives_the_cli_message_from_a_file_and_from_a_dict(tmp_path, cli, scene_dict):

@@ -131,3 +131,22 @@ def test_bad_arrays_are_named():
     with pytest.raises(obscura.InputError, match="^transmittance_threshold: must lie in"):
         obscura.screening_metrics(transmittance=t, target=np.ones((4, 4)), bands="lwir",
                                   transmittance_threshold=2)
+
+
+def test_spectral_nodes_per_band_takes_a_count_per_band():
+    # The LWIR (flat 8-12 um) as one node renders it: the Gauss node at 10 um
+    # with weight 4 um. Its own count inverts it to the surfaces' 330 and
+    # 290 K; the 8 nodes given to the other bands would not.
+    target = np.zeros((4, 4), bool)
+    target[1:3, 1:3] = True
+    t = np.ones((1, 4, 4), np.float32)
+    radiance = np.where(target, 4.0 * obscura.planck(10.0, 330.0),
+                        4.0 * obscura.planck(10.0, 290.0)).astype(np.float32)[None]
+    kw = dict(transmittance=t, target=target, radiance=radiance, bands=["lwir"],
+              background_margin_px=1)
+    m = obscura.screening_metrics(spectral_nodes_per_band={"*": 8, "lwir": 1}, **kw)
+    assert m["frames"][0]["delta_t_k"] == pytest.approx(40.0, abs=2e-3)
+    m = obscura.screening_metrics(spectral_nodes_per_band=8, **kw)
+    assert m["frames"][0]["delta_t_k"] != pytest.approx(40.0, abs=0.05)
+    with pytest.raises(obscura.InputError, match="^spectral_nodes_per_band/lwir: must lie in"):
+        obscura.screening_metrics(spectral_nodes_per_band={"lwir": 0}, **kw)

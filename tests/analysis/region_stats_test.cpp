@@ -22,7 +22,7 @@ TEST(RegionStats, MeansOverRectanglesAndTheWholeImage) {
   img.bands.push_back(b);
   const std::vector<PixelRegion> regions = {
       {"top", "ir", 0, 0, 4, 1}, {"other", "tv", 0, 0, 1, 1}, {"corner", "ir", 3, 1, 4, 2}};
-  const auto stats = region_stats(img, regions, 8);
+  const auto stats = region_stats(img, regions, RenderSettings{});
   ASSERT_EQ(stats.size(), 3u);  // image, top, corner (the "tv" region belongs to another sensor)
   EXPECT_EQ(stats[0].region, "image");
   EXPECT_EQ(stats[0].pixels, 8);

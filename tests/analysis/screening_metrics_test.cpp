@@ -155,7 +155,7 @@ std::vector<ScreeningMetrics> render_metrics(Scene& scene) {
   const SensorImage image = render_sensor(scene, scene.sensors[0]);
   const TargetMask mask =
       compute_target_mask(scene, scene.sensors[0], scene.metrics.background_margin_px);
-  return screening_metrics(image, mask, scene.metrics, scene.settings.spectral_nodes_per_band, 1.5);
+  return screening_metrics(image, mask, scene.metrics, scene.settings, 1.5);
 }
 
 TEST(ScreeningMetrics, NoCloudTargetFullyVisibleAndDeltaTFromPlanck) {
@@ -180,6 +180,28 @@ TEST(ScreeningMetrics, NoCloudTargetFullyVisibleAndDeltaTFromPlanck) {
     EXPECT_NEAR(m.target_apparent_temperature_k, kTargetK, 2e-3);
     EXPECT_NEAR(m.background_apparent_temperature_k, kGroundK, 2e-3);
     EXPECT_NEAR(m.delta_t_k, kTargetK - kGroundK, 3e-3);
+  }
+}
+
+// A band rendered at its own node count (RenderSettings::spectral_nodes_by_band,
+// one node here, whose band radiance is far from the exact band integral in
+// a 4 µm band) is inverted with that count's quadrature, so the surfaces'
+// apparent temperatures stay exact; with the other bands' 8 nodes the LWIR
+// would be off by far more.
+TEST(ScreeningMetrics, ABandsOwnNodeCountInvertsItsRadiance) {
+  Scene scene = target_scene();
+  scene.settings.spectral_nodes_by_band = {{"lwir", 1}};
+  const auto rows = render_metrics(scene);
+  ASSERT_EQ(rows.size(), 2u);
+  for (const ScreeningMetrics& m : rows) {
+    SCOPED_TRACE(m.band.name());
+    EXPECT_NEAR(m.target_apparent_temperature_k, kTargetK, 2e-3);
+    EXPECT_NEAR(m.background_apparent_temperature_k, kGroundK, 2e-3);
+    if (m.band.name() != "lwir") continue;
+    // What the other bands' count would have made of the same radiance.
+    const double wrong =
+        BandQuadrature(m.band, 8, 0.0).apparent_temperature(m.target_radiance) - kTargetK;
+    EXPECT_GT(std::abs(wrong), 0.05);
   }
 }
 
@@ -257,7 +279,7 @@ TEST(ScreeningMetrics, EmptyMaskGivesUndefinedMetricsAndSizeMismatchThrows) {
   empty.height = image.height;
   empty.labels.assign(static_cast<std::size_t>(image.width) * image.height, MaskLabel::kOther);
   finish_target_mask(empty, 8);
-  const auto rows = screening_metrics(image, empty, scene.metrics, 8, 0.0);
+  const auto rows = screening_metrics(image, empty, scene.metrics, RenderSettings{}, 0.0);
   ASSERT_EQ(rows.size(), 2u);
   EXPECT_EQ(rows[0].target_pixels, 0);
   EXPECT_TRUE(std::isnan(rows[0].transmittance_mean));
@@ -268,7 +290,7 @@ TEST(ScreeningMetrics, EmptyMaskGivesUndefinedMetricsAndSizeMismatchThrows) {
 
   TargetMask small = empty;
   small.width = 3;
-  EXPECT_THROW(screening_metrics(image, small, scene.metrics, 8, 0.0), Error);
+  EXPECT_THROW(screening_metrics(image, small, scene.metrics, RenderSettings{}, 0.0), Error);
 }
 
 TEST(ScreeningMetrics, BandClassesAndReferenceTime) {

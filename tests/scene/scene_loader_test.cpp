@@ -5,6 +5,7 @@
 #include <map>
 
 #include "obscura/core/error.h"
+#include "obscura/render/integrator.h"
 #include "obscura/scene/scene.h"
 
 namespace obscura {
@@ -270,6 +271,41 @@ TEST(SceneLoader, RadianceCachePhotonsPerBand) {
   doc["render"]["radiance_cache"]["photons"] = {{"*", 0}};
   m = load_error(doc);
   EXPECT_NE(m.find("/render/radiance_cache/photons"), std::string::npos) << m;
+}
+
+// Spectral nodes per band, in the same forms; the renderer's spectra and the
+// metrics' quadrature take each band's own count.
+TEST(SceneLoader, SpectralNodesPerBand) {
+  auto doc = minimal_scene();
+  doc["render"]["spectral_nodes_per_band"] = 3;
+  Scene s = parse_scene(doc, "scene.json");
+  EXPECT_EQ(s.settings.spectral_nodes_per_band, 3);
+  EXPECT_TRUE(s.settings.spectral_nodes_by_band.empty());
+  doc["render"]["spectral_nodes_per_band"] = {{"*", 5}, {"8:12", 1}};
+  s = parse_scene(doc, "scene.json");
+  EXPECT_EQ(s.settings.spectral_nodes_per_band, 5);
+  EXPECT_EQ(s.settings.spectral_nodes_by_band, (std::map<std::string, int>{{"8:12", 1}}));
+  const FrameSpectra spectra = frame_spectra(s);
+  for (std::size_t b = 0; b < s.sensors[0].bands.size(); ++b) {
+    const Band& band = s.sensors[0].bands[b];
+    const int nodes = band.name() == "8:12" ? 1 : 5;
+    EXPECT_EQ(s.settings.spectral_nodes(band), nodes) << band.name();
+    // Nodes per panel of the band's response (one panel for a flat band,
+    // two for "custom"'s triangle).
+    const std::size_t panels = band.name() == "custom" ? 2 : 1;
+    EXPECT_EQ(spectra[0][b].size(), panels * nodes) << band.name();
+  }
+  doc["render"]["spectral_nodes_per_band"] = {{"lwir", 2}};
+  std::string m = load_error(doc);
+  EXPECT_NE(m.find("/render/spectral_nodes_per_band/lwir"), std::string::npos) << m;
+  EXPECT_NE(m.find("mwir, 8:12, custom"), std::string::npos) << m;
+  doc["render"]["spectral_nodes_per_band"] = {{"8:12", 65}};
+  m = load_error(doc);
+  EXPECT_NE(m.find("/render/spectral_nodes_per_band/8:12"), std::string::npos) << m;
+  EXPECT_NE(m.find("[1, 64]"), std::string::npos) << m;
+  doc["render"]["spectral_nodes_per_band"] = {{"*", 0}};
+  m = load_error(doc);
+  EXPECT_NE(m.find("/render/spectral_nodes_per_band"), std::string::npos) << m;
 }
 
 TEST(SceneLoader, SyntaxErrorNamesLineAndColumn) {

@@ -4,7 +4,7 @@ namespace obscura {
 
 std::vector<RegionStats> region_stats(const SensorImage& image,
                                       const std::vector<PixelRegion>& regions,
-                                      int spectral_nodes_per_band) {
+                                      const RenderSettings& render) {
   std::vector<PixelRegion> all = {{"image", image.sensor, 0, 0, image.width, image.height}};
   for (const auto& r : regions)
     if (r.sensor == image.sensor) all.push_back(r);
@@ -25,7 +25,7 @@ std::vector<RegionStats> region_stats(const SensorImage& image,
       s.mean_radiance = l / s.pixels;
       s.mean_transmittance = t / s.pixels;
       // The same quadrature as the renderer's, so a uniform blackbody region gives its temperature.
-      s.mean_apparent_temperature = BandQuadrature(b.band, spectral_nodes_per_band, 0.0)
+      s.mean_apparent_temperature = BandQuadrature(b.band, render.spectral_nodes(b.band), 0.0)
                                         .apparent_temperature(s.mean_radiance);
       out.push_back(s);
     }

@@ -20,9 +20,10 @@ struct RegionStats {
 
 // One row per (region, band) for the regions of `image`'s sensor, preceded by
 // the whole image as region "image". Apparent temperature is that of the mean
-// band radiance (the average of temperatures would not be a radiometric mean).
+// band radiance (the average of temperatures would not be a radiometric mean),
+// by the band's quadrature as `render` renders it (RenderSettings::spectral_nodes).
 std::vector<RegionStats> region_stats(const SensorImage& image,
                                       const std::vector<PixelRegion>& regions,
-                                      int spectral_nodes_per_band);
+                                      const RenderSettings& render);
 
 }  // namespace obscura

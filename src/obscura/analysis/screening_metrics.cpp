@@ -38,7 +38,7 @@ double percentile(std::vector<double> values, double p) {
 
 std::vector<ScreeningMetrics> screening_metrics(const SensorImage& image, const TargetMask& mask,
                                                 const MetricsSettings& settings,
-                                                int spectral_nodes_per_band, double time_s) {
+                                                const RenderSettings& render, double time_s) {
   if (image.width != mask.width || image.height != mask.height)
     throw Error(
         fmt::format("screening metrics: the {}x{} image of sensor {} does not match the {}x{} "
@@ -82,7 +82,7 @@ std::vector<ScreeningMetrics> screening_metrics(const SensorImage& image, const 
                      : kNaN;
     // The same quadrature as the renderer's (as region_stats): a uniform
     // blackbody region gives its temperature.
-    const BandQuadrature q(b.band, spectral_nodes_per_band, 0.0);
+    const BandQuadrature q(b.band, render.spectral_nodes(b.band), 0.0);
     m.target_apparent_temperature_k = apparent_temperature_or_nan(q, m.target_radiance);
     m.background_apparent_temperature_k = apparent_temperature_or_nan(q, m.background_radiance);
     m.delta_t_k = m.target_apparent_temperature_k - m.background_apparent_temperature_k;

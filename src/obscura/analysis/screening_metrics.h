@@ -68,11 +68,11 @@ struct ScreeningMetrics {
 
 // One row per band of `image`, whose sensor `mask` must describe (same size;
 // Error otherwise). Apparent temperatures use the renderer's quadrature
-// (`spectral_nodes_per_band` nodes), so a uniform blackbody region gives
-// its temperature.
+// (RenderSettings::spectral_nodes of `render`), so a uniform blackbody region
+// gives its temperature.
 std::vector<ScreeningMetrics> screening_metrics(const SensorImage& image, const TargetMask& mask,
                                                 const MetricsSettings& settings,
-                                                int spectral_nodes_per_band, double time_s);
+                                                const RenderSettings& render, double time_s);
 
 // The time screening is measured from: the earliest activation time of the
 // scene's animated clouds, or 0 s when it has none (static clouds are present

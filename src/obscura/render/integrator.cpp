@@ -15,8 +15,7 @@ std::vector<SpectralNodes> sensor_spectra(const Scene& scene, const Sensor& sens
   const std::vector<double>& medium_wl = scene.medium ? scene.medium->wavelengths_um() : grey;
   std::vector<SpectralNodes> bands;
   for (const Band& band : sensor.bands) {
-    bands.emplace_back(BandQuadrature(band, scene.settings.spectral_nodes_per_band, 0.0),
-                       medium_wl);
+    bands.emplace_back(BandQuadrature(band, scene.settings.spectral_nodes(band), 0.0), medium_wl);
     if (bands.back().size() > static_cast<std::size_t>(kMaxSpectralNodes))
       throw InputError("", "band " + band.name(), "too many spectral nodes for one band");
   }

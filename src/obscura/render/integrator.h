@@ -37,8 +37,8 @@ CameraRay find_camera_ray_hit(const Scene& scene, const Ray& ray);
 // The spectral nodes each band of each sensor is rendered at: [sensor][band].
 using FrameSpectra = std::vector<std::vector<SpectralNodes>>;
 
-// Nodes for every band of every sensor of the scene: settings'
-// spectral_nodes_per_band Gauss–Legendre nodes per band, placed among the
+// Nodes for every band of every sensor of the scene: the settings'
+// Gauss–Legendre nodes per band (RenderSettings::spectral_nodes), placed among the
 // staged medium's spectral samples. Throws InputError for a band with more
 // than kMaxSpectralNodes nodes.
 FrameSpectra frame_spectra(const Scene& scene);

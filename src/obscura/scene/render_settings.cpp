@@ -37,6 +37,27 @@ int saturate_int(long long v) {
   return static_cast<int>(v < lo ? lo : v > hi ? hi : v);
 }
 
+// A count for every band, or {band: count, "*": count for the others} (the
+// atmosphere's extinction_per_km form): into `all` and `by_band`, each count
+// through `narrow` (saturate_int for an int).
+template <class Count, class Narrow>
+void parse_count_by_band(JsonObject& o, const std::string& key, Count& all,
+                         std::map<std::string, Count>& by_band, Narrow narrow) {
+  if (o.has(key) && o.raw(key).is_object()) {
+    JsonObject counts = o.object(key);
+    for (const auto& [band, value] : o.raw(key).items()) {
+      const Count count = narrow(counts.integer(band));
+      if (band == "*")
+        all = count;
+      else
+        by_band[band] = count;
+    }
+    counts.finish();
+  } else {
+    all = narrow(o.integer_or(key, all));
+  }
+}
+
 PathTracerSettings::SkySampling parse_sky_sampling(JsonObject& o, const std::string& key,
                                                    PathTracerSettings::SkySampling fallback) {
   using S = PathTracerSettings::SkySampling;
@@ -73,21 +94,8 @@ void parse_photon_map(JsonObject& o, PhotonMapSettings& p) {
 
 void parse_radiance_cache(JsonObject& o, RadianceCacheSettings& c) {
   c.voxel_m = o.number_or("voxel_m", c.voxel_m);
-  // "photons": a count for every band, or {band: count, "*": count for the
-  // others} (the atmosphere's extinction_per_km form).
-  if (o.has("photons") && o.raw("photons").is_object()) {
-    JsonObject by_band = o.object("photons");
-    for (const auto& [band, value] : o.raw("photons").items()) {
-      const long long count = by_band.integer(band);
-      if (band == "*")
-        c.photons_per_node = count;
-      else
-        c.photons_by_band[band] = count;
-    }
-    by_band.finish();
-  } else {
-    c.photons_per_node = o.integer_or("photons", c.photons_per_node);
-  }
+  parse_count_by_band(o, "photons", c.photons_per_node, c.photons_by_band,
+                      [](long long v) { return v; });
   c.sh_degree = saturate_int(o.integer_or("sh_degree", c.sh_degree));
   c.kernel_radius_nodes = saturate_int(o.integer_or("kernel_radius_nodes", c.kernel_radius_nodes));
   c.lateral_period_m = o.number_or("lateral_period_m", c.lateral_period_m);
@@ -128,6 +136,11 @@ std::string_view render_device_name(RenderDevice device) {
   return device == RenderDevice::kGpu ? "gpu" : "cpu";
 }
 
+int RenderSettings::spectral_nodes(const Band& band) const {
+  const auto it = spectral_nodes_by_band.find(band.name());
+  return it == spectral_nodes_by_band.end() ? spectral_nodes_per_band : it->second;
+}
+
 bool method_scatters(RenderMethod method) { return info(method).scatters; }
 bool method_is_monte_carlo(RenderMethod method) { return info(method).monte_carlo; }
 
@@ -143,6 +156,8 @@ void check_render_settings(const RenderSettings& s, const SettingError& error) {
           "max_samples_per_pixel", "must lie in [1, 1048576]");
   require(s.spectral_nodes_per_band >= 1 && s.spectral_nodes_per_band <= 64,
           "spectral_nodes_per_band", "must lie in [1, 64]");
+  for (const auto& [band, nodes] : s.spectral_nodes_by_band)
+    require(nodes >= 1 && nodes <= 64, "spectral_nodes_per_band/" + band, "must lie in [1, 64]");
   require(s.relative_tolerance >= 1e-12 && s.relative_tolerance <= 0.1, "relative_tolerance",
           "must lie in [1e-12, 0.1]");
   require(s.threads >= 0 && s.threads <= 4096, "threads", "must lie in [0, 4096] (0: all cores)");
@@ -233,8 +248,8 @@ RenderSettings parse_render_settings(JsonObject& r, RenderSettings s) {
   s.target_relative_stderr = r.number_or("target_relative_stderr", s.target_relative_stderr);
   s.max_samples_per_pixel =
       saturate_int(r.integer_or("max_samples_per_pixel", s.max_samples_per_pixel));
-  s.spectral_nodes_per_band =
-      saturate_int(r.integer_or("spectral_nodes_per_band", s.spectral_nodes_per_band));
+  parse_count_by_band(r, "spectral_nodes_per_band", s.spectral_nodes_per_band,
+                      s.spectral_nodes_by_band, saturate_int);
   if (r.has("emission_quadrature")) {
     const std::string q = r.string("emission_quadrature");
     if (q != "cell" && q != "adaptive")

@@ -11,6 +11,7 @@
 #include <string>
 #include <string_view>
 
+#include "obscura/core/band.h"
 #include "obscura/core/error.h"
 
 namespace obscura {
@@ -131,7 +132,14 @@ struct RenderSettings {
   // at most this fraction of its mean, or max_samples_per_pixel is reached.
   double target_relative_stderr = 0.0;
   int max_samples_per_pixel = 4096;
-  int spectral_nodes_per_band = 8;  // Gauss–Legendre nodes across each band
+  int spectral_nodes_per_band = 8;  // Gauss–Legendre nodes across each band…
+  // …but these bands, by their name in the sensors ("laser1064", "8:12"):
+  // a narrow band (a laser line) needs fewer for the same spectral accuracy
+  // (the photon methods launch photons per node, so there fewer nodes also
+  // mean fewer photons for the band).
+  std::map<std::string, int> spectral_nodes_by_band;
+  // The nodes band `band` takes.
+  int spectral_nodes(const Band& band) const;
   EmissionQuadrature emission_quadrature = EmissionQuadrature::kCell;
   double relative_tolerance = 1e-6;  // the adaptive emission integral per cell
   // Camera rays that escape inside the sun's disc see the sun. Off where a

@@ -327,34 +327,39 @@ PixelRegion parse_region(JsonObject o, const Scene& scene) {
 void check_photon_memory(const Scene& scene, const JsonObject& root) {
   if (scene.settings.method != RenderMethod::kPhotonMap) return;
   constexpr std::uint64_t kPhotonBytes = 28;
-  std::uint64_t bands = 0;
-  for (const Sensor& s : scene.sensors) bands += s.bands.size();
-  const auto bytes = checked_product(
-      {static_cast<std::uint64_t>(scene.settings.photon_map.photons_per_node),
-       static_cast<std::uint64_t>(scene.settings.spectral_nodes_per_band), bands, kPhotonBytes});
+  std::uint64_t bands = 0, nodes = 0;
+  for (const Sensor& s : scene.sensors)
+    for (const Band& band : s.bands) {
+      ++bands;
+      nodes += static_cast<std::uint64_t>(scene.settings.spectral_nodes(band));
+    }
+  const auto bytes =
+      checked_product({static_cast<std::uint64_t>(scene.settings.photon_map.photons_per_node),
+                       nodes, kPhotonBytes});
   check_memory(bytes.value_or(UINT64_MAX), root.file(), "/render/photon_map/photons",
                fmt::format("{} photons per node over {} spectral nodes in {} bands (28 bytes per "
                            "stored photon)",
-                           scene.settings.photon_map.photons_per_node,
-                           scene.settings.spectral_nodes_per_band, bands));
+                           scene.settings.photon_map.photons_per_node, nodes, bands));
 }
 
-// Every band that /render/radiance_cache/photons names is a band of some
-// sensor: a count for a band nobody renders is a typo or a stale scene.
+// Every band that /render/radiance_cache/photons or
+// /render/spectral_nodes_per_band names is a band of some sensor: a setting
+// for a band nobody renders is a typo or a stale scene.
 void check_bands_named(const Scene& scene, const std::string& file) {
-  const auto& by_band = scene.settings.radiance_cache.photons_by_band;
-  if (by_band.empty()) return;
   std::vector<std::string> names;  // the sensors' bands, in order, once each
   for (const Sensor& s : scene.sensors)
     for (const Band& b : s.bands)
       if (std::find(names.begin(), names.end(), b.name()) == names.end()) names.push_back(b.name());
-  for (const auto& [band, count] : by_band) {
-    if (std::find(names.begin(), names.end(), band) == names.end())
-      throw InputError(file, "/render/radiance_cache/photons/" + band,
-                       fmt::format("no sensor renders a band '{}' (the sensors' bands: {}; "
-                                   "\"*\" for all others)",
-                                   band, fmt::join(names, ", ")));
-  }
+  auto check = [&](const auto& by_band, const std::string& field) {
+    for (const auto& [band, value] : by_band)
+      if (std::find(names.begin(), names.end(), band) == names.end())
+        throw InputError(file, field + "/" + band,
+                         fmt::format("no sensor renders a band '{}' (the sensors' bands: {}; "
+                                     "\"*\" for all others)",
+                                     band, fmt::join(names, ", ")));
+  };
+  check(scene.settings.radiance_cache.photons_by_band, "/render/radiance_cache/photons");
+  check(scene.settings.spectral_nodes_by_band, "/render/spectral_nodes_per_band");
 }
 
 }  // namespace

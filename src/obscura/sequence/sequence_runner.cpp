@@ -348,14 +348,13 @@ class SequenceRun {
   // Rank 0: measures a whole frame and hands it on.
   void take(RenderedFrame frame) {
     const double t = frame.time_s;
-    const int nodes_per_band = scene_.settings.spectral_nodes_per_band;
     for (std::size_t s = 0; s < frame.images.size(); ++s) {
       const SensorImage& image = frame.images[s];
       result_.sensor_frames.push_back(frame_stats(image, t, frame.staging_seconds));
-      for (RegionStats& r : region_stats(image, scene_.regions, nodes_per_band))
+      for (RegionStats& r : region_stats(image, scene_.regions, scene_.settings))
         result_.time_series.push_back({t, image.sensor, std::move(r)});
       if (result_.with_metrics) {
-        auto rows = screening_metrics(image, result_.masks[s], scene_.metrics, nodes_per_band, t);
+        auto rows = screening_metrics(image, result_.masks[s], scene_.metrics, scene_.settings, t);
         result_.metrics.insert(result_.metrics.end(), rows.begin(), rows.end());
       }
     }
