@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <mutex>
 
 #include "obscura/medium/gaussian_puff.h"
 #include "obscura/medium/grid_medium.h"
@@ -110,6 +111,27 @@ TEST(AdaptiveSamples, PixelsLeftAtTheirCentreAreWithinTheThresholdOfTheFullImage
   const double adaptive_everywhere = largest_difference(a, f, [](std::size_t) { return true; });
   EXPECT_GT(centres_alone, 0.2);         // 0.81 when written
   EXPECT_LT(adaptive_everywhere, 0.05);  // 0.0035 when written
+}
+
+// Progress counts each row twice, for its centres and for its samples, and
+// ends at its total.
+TEST(AdaptiveSamples, ProgressCountsTheCentresAndTheSamples) {
+  Scene scene = edge_scene(4, 0.05);
+  scene.settings.threads = 2;
+  std::mutex mutex;
+  int calls = 0, last_done = 0, total = 0;
+  RenderOptions options;
+  options.progress = [&](int done, int rows) {
+    const std::lock_guard<std::mutex> lock(mutex);
+    ++calls;
+    last_done = std::max(last_done, done);
+    total = rows;
+  };
+  render_sensor(scene, scene.sensors[0], options);
+  const int height = scene.sensors[0].camera.height();
+  EXPECT_EQ(calls, 2 * height);
+  EXPECT_EQ(last_done, 2 * height);
+  EXPECT_EQ(total, 2 * height);
 }
 
 TEST(AdaptiveSamples, NoEdgeNoRefinement) {

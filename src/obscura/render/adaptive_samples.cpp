@@ -96,9 +96,13 @@ int image_row(const RenderOptions& options, std::size_t row) {
   return options.row_offset + static_cast<int>(row) * options.row_stride;
 }
 
-void finish_row(const RenderOptions& options, RowCounters& counters, int rows) {
+// Progress counts every row twice, its centres and then its samples (the
+// rows of centres include the neighbours of a process's rows): the first
+// pass is about as costly as the second, which refines a fraction of the
+// pixels.
+void finish_row(const RenderOptions& options, RowCounters& counters, int passes) {
   const int done = ++counters.rows_done;
-  if (options.progress) options.progress(done, rows);
+  if (options.progress) options.progress(done, passes);
 }
 
 }  // namespace
@@ -109,6 +113,7 @@ void render_adaptive_rays(const SensorRender& job, const RenderOptions& options,
   const int width = image.width, rows = rendered_row_count(image.height, options);
   const std::size_t bands = job.bands.size();
   CentreSamples centres(job, options, width, image.height);
+  const int passes = static_cast<int>(centres.rows().size()) + rows;
   parallel_for(centres.rows().size(), scene.settings.threads, [&](std::size_t r) {
     throw_if_interrupted();
     const int y = centres.rows()[r];
@@ -123,6 +128,7 @@ void render_adaptive_rays(const SensorRender& job, const RenderOptions& options,
     counters.samples_taken += width;
     counters.segments += ws->segments;
     counters.evals += ws->integrand_evals;
+    finish_row(options, counters, passes);
   });
   parallel_for(static_cast<std::size_t>(rows), scene.settings.threads, [&](std::size_t row) {
     throw_if_interrupted();
@@ -144,7 +150,7 @@ void render_adaptive_rays(const SensorRender& job, const RenderOptions& options,
     }
     counters.segments += ws->segments;
     counters.evals += ws->integrand_evals;
-    finish_row(options, counters, rows);
+    finish_row(options, counters, passes);
   });
 }
 
@@ -156,6 +162,7 @@ void render_adaptive_batches(const SensorRender& job, const BatchIntegrator& int
   const int spp = scene.settings.samples_per_pixel;
   const std::size_t bands = job.bands.size();
   CentreSamples centres(job, options, width, image.height);
+  const int passes = static_cast<int>(centres.rows().size()) + rows;
   std::vector<CameraRay> rays;
   std::vector<double> l, t;
 
@@ -173,11 +180,13 @@ void render_adaptive_batches(const SensorRender& job, const BatchIntegrator& int
             find_camera_ray_hit(scene, job.sensor.camera.generate_ray(x + 0.5, y + 0.5));
     });
     batch_sample_sums(job, integrator, rays, l, t, counters);
-    for (std::size_t r = 0; r < batch_rows; ++r)
+    for (std::size_t r = 0; r < batch_rows; ++r) {
       for (int x = 0; x < width; ++x) {
         const std::size_t i = (r * width + x) * bands;
         centres.set(r0 + r, x, &l[i], &t[i]);
       }
+      finish_row(options, counters, passes);
+    }
     counters.samples_taken += rays.size();
   }
 
@@ -241,7 +250,7 @@ void render_adaptive_batches(const SensorRender& job, const BatchIntegrator& int
         }
         store_pixel(job, static_cast<std::size_t>(y) * width + x, sums, n, image);
       }
-      finish_row(options, counters, rows);
+      finish_row(options, counters, passes);
     });
   }
 }

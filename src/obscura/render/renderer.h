@@ -37,6 +37,8 @@ namespace obscura {
 
 struct RenderOptions {
   // Called as rows complete, with (rows done, rows total); may be called from any thread.
+  // With an adaptive threshold every row counts twice, once for its centres
+  // and once for its samples (render/adaptive_samples.h).
   std::function<void(int, int)> progress;
   // Render only rows y with y mod row_stride == row_offset (a process's share
   // of the image, sequence/distributed_frame.h); the other rows stay zero.

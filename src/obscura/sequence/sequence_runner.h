@@ -34,7 +34,8 @@ struct RenderProgress {
   std::size_t frame = 0, frames = 0;  // 0-based frame index, frame count
   double time_s = 0;                  // the frame's scene time
   int sensor = 0;                     // index into scene.sensors
-  int rows_done = 0, rows_total = 0;  // of that sensor's image
+  int rows_done = 0, rows_total = 0;  // of that sensor's image (each row twice with an
+                                      // adaptive threshold: RenderOptions::progress)
 };
 
 // One region-mean row of the time series: a frame, a sensor, a region
