@@ -12,6 +12,7 @@
 #include <mutex>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "bindings.h"
@@ -100,25 +101,24 @@ void drop_radiance_figures(std::vector<ScreeningMetrics>& rows) {
 }
 
 // spectral_nodes_per_band as Python gives it: a count for every band, or
-// {band: count, "*": count for the others} (the scene file's forms).
+// {band: count, "*": count for the others} (the scene file's forms), range-
+// checked by the library's one check of the render settings.
 RenderSettings spectral_nodes_from(const py::object& value) {
   RenderSettings render;
-  auto count = [](const py::handle& h, const std::string& field) {
-    const int n = h.cast<int>();
-    if (n < 1 || n > 64) throw InputError("", field, "must lie in [1, 64]");
-    return n;
-  };
   if (py::isinstance<py::dict>(value)) {
     for (const auto& [key, n] : value.cast<py::dict>()) {
       const std::string band = key.cast<std::string>();
       if (band == "*")
-        render.spectral_nodes_per_band = count(n, "spectral_nodes_per_band/*");
+        render.spectral_nodes_per_band = n.cast<int>();
       else
-        render.spectral_nodes_by_band[band] = count(n, "spectral_nodes_per_band/" + band);
+        render.spectral_nodes_by_band[band] = n.cast<int>();
     }
   } else {
-    render.spectral_nodes_per_band = count(value, "spectral_nodes_per_band");
+    render.spectral_nodes_per_band = value.cast<int>();
   }
+  check_render_settings(render, [](std::string_view key, std::string_view what) {
+    return InputError("", std::string(key), std::string(what));
+  });
   return render;
 }
 
@@ -192,15 +192,7 @@ void bind_analysis(py::module_& m) {
         d["transmittance_threshold"] = scene.metrics.transmittance_threshold;
         d["screened_fraction"] = scene.metrics.screened_fraction;
         d["background_margin_px"] = scene.metrics.background_margin_px;
-        if (scene.settings.spectral_nodes_by_band.empty()) {
-          d["spectral_nodes_per_band"] = scene.settings.spectral_nodes_per_band;
-        } else {
-          py::dict nodes;
-          nodes["*"] = scene.settings.spectral_nodes_per_band;
-          for (const auto& [band, n] : scene.settings.spectral_nodes_by_band)
-            nodes[band.c_str()] = n;
-          d["spectral_nodes_per_band"] = nodes;
-        }
+        d["spectral_nodes_per_band"] = spectral_nodes_object(scene.settings);
         d["reference_time_s"] = screening_reference_time_s(scene);
         py::dict targets, bands;
         for (const Sensor& s : scene.sensors) {

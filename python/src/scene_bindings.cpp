@@ -55,14 +55,7 @@ py::dict settings_dict(const RenderSettings& r) {
   d["adaptive_threshold"] = r.adaptive_threshold;
   d["target_relative_stderr"] = r.target_relative_stderr;
   d["max_samples_per_pixel"] = r.max_samples_per_pixel;
-  if (r.spectral_nodes_by_band.empty()) {
-    d["spectral_nodes_per_band"] = r.spectral_nodes_per_band;
-  } else {
-    py::dict nodes;  // the scene file's form: "*" for the bands not named
-    nodes["*"] = r.spectral_nodes_per_band;
-    for (const auto& [band, n] : r.spectral_nodes_by_band) nodes[band.c_str()] = n;
-    d["spectral_nodes_per_band"] = nodes;
-  }
+  d["spectral_nodes_per_band"] = spectral_nodes_object(r);
   d["relative_tolerance"] = r.relative_tolerance;
   d["camera_sees_sun"] = r.camera_sees_sun;
   d["seed"] = r.seed;
@@ -71,6 +64,14 @@ py::dict settings_dict(const RenderSettings& r) {
 }
 
 }  // namespace
+
+py::object spectral_nodes_object(const RenderSettings& settings) {
+  if (settings.spectral_nodes_by_band.empty()) return py::int_(settings.spectral_nodes_per_band);
+  py::dict nodes;
+  nodes["*"] = settings.spectral_nodes_per_band;
+  for (const auto& [band, n] : settings.spectral_nodes_by_band) nodes[band.c_str()] = n;
+  return std::move(nodes);
+}
 
 void bind_scene(py::module_& m) {
   py::class_<SceneHandle, std::shared_ptr<SceneHandle>>(

@@ -23,6 +23,10 @@ pybind11::object json_to_python(const nlohmann::json& value);
 // NaN is not JSON); TypeError names what json cannot encode.
 nlohmann::json python_to_json(const pybind11::handle& value);
 
+// A scene's spectral_nodes_per_band as its file writes it: a count for every
+// band, or {"*": count, band: count, …} where bands have their own.
+pybind11::object spectral_nodes_object(const RenderSettings& settings);
+
 // A configuration given as a file or as a dict with a file's content (prepare,
 // study): the document and the file that names it in errors, whose folder
 // relative paths in it resolve against. A dict stands for `path`, else

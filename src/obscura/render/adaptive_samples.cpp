@@ -66,14 +66,10 @@ class CentreSamples {
     return false;
   }
 
-  // Pixel (x, y)'s centre as the sums of one sample.
-  void centre_sums(int x, int y, PixelSums& sums) const {
+  // Adds pixel (x, y)'s centre to `sums` as one sample.
+  void add_centre(int x, int y, PixelSums& sums) const {
     const std::size_t here = slot_of(x, y);
-    for (std::size_t b = 0; b < bands_; ++b) {
-      sums.l[b] = l_[here + b];
-      sums.l2[b] = sums.l[b] * sums.l[b];
-      sums.t[b] = t_[here + b];
-    }
+    sums.add(&l_[here], &t_[here]);
   }
 
  private:
@@ -144,7 +140,7 @@ void render_adaptive_rays(const SensorRender& job, const RenderOptions& options,
         n = job.pixel(x, y, rng, *ws, sums);
         counters.samples_taken += n;
       } else {
-        centres.centre_sums(x, y, sums);
+        centres.add_centre(x, y, sums);
       }
       store_pixel(job, pixel, sums, n, image);
     }
@@ -175,9 +171,7 @@ void render_adaptive_batches(const SensorRender& job, const BatchIntegrator& int
     parallel_for(batch_rows, scene.settings.threads, [&](std::size_t r) {
       throw_if_interrupted();
       const int y = centres.rows()[r0 + r];
-      for (int x = 0; x < width; ++x)
-        rays[r * width + x] =
-            find_camera_ray_hit(scene, job.sensor.camera.generate_ray(x + 0.5, y + 0.5));
+      for (int x = 0; x < width; ++x) rays[r * width + x] = job.camera_ray(x + 0.5, y + 0.5);
     });
     batch_sample_sums(job, integrator, rays, l, t, counters);
     for (std::size_t r = 0; r < batch_rows; ++r) {
@@ -216,15 +210,11 @@ void render_adaptive_batches(const SensorRender& job, const BatchIntegrator& int
       throw_if_interrupted();
       const int y = image_row(options, row0 + r);
       std::size_t next = first[r];
-      for (int x = 0; x < width; ++x) {
-        if (!refined[r * width + x]) continue;
-        Rng rng(scene.settings.seed, static_cast<std::size_t>(y) * width + x);
-        for (int s = 0; s < spp; ++s) {
-          double px, py;
-          job.sample_position(x, y, s, rng, px, py);
-          rays[next++] = find_camera_ray_hit(scene, job.sensor.camera.generate_ray(px, py));
+      for (int x = 0; x < width; ++x)
+        if (refined[r * width + x]) {
+          job.pixel_rays(x, y, &rays[next]);
+          next += spp;
         }
-      }
     });
     batch_sample_sums(job, integrator, rays, l, t, counters);
     parallel_for(batch_rows, scene.settings.threads, [&](std::size_t r) {
@@ -236,17 +226,11 @@ void render_adaptive_batches(const SensorRender& job, const BatchIntegrator& int
         sums.clear();
         int n = 1;
         if (refined[r * width + x]) {
-          for (int s = 0; s < spp; ++s, ++next)
-            for (std::size_t b = 0; b < bands; ++b) {
-              const double sample_l = l[next * bands + b];
-              sums.l[b] += sample_l;
-              sums.l2[b] += sample_l * sample_l;
-              sums.t[b] += t[next * bands + b];
-            }
+          for (int s = 0; s < spp; ++s, ++next) sums.add(&l[next * bands], &t[next * bands]);
           n = spp;
           counters.samples_taken += spp;
         } else {
-          centres.centre_sums(x, y, sums);
+          centres.add_centre(x, y, sums);
         }
         store_pixel(job, static_cast<std::size_t>(y) * width + x, sums, n, image);
       }

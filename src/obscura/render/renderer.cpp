@@ -91,15 +91,8 @@ void render_batches(const SensorRender& job, const BatchIntegrator& integrator,
     parallel_for(static_cast<std::size_t>(batch_rows), scene.settings.threads, [&](std::size_t r) {
       throw_if_interrupted();
       const int y = image_row(r);
-      for (int x = 0; x < width; ++x) {
-        Rng rng(scene.settings.seed, static_cast<std::size_t>(y) * width + x);
-        for (int s = 0; s < spp; ++s) {
-          double px, py;
-          job.sample_position(x, y, s, rng, px, py);
-          rays[r * per_row + static_cast<std::size_t>(x) * spp + s] =
-              find_camera_ray_hit(scene, job.sensor.camera.generate_ray(px, py));
-        }
-      }
+      for (int x = 0; x < width; ++x)
+        job.pixel_rays(x, y, &rays[r * per_row + static_cast<std::size_t>(x) * spp]);
     });
     batch_sample_sums(job, integrator, rays, l, t, counters);
     parallel_for(static_cast<std::size_t>(batch_rows), scene.settings.threads, [&](std::size_t r) {
@@ -109,13 +102,8 @@ void render_batches(const SensorRender& job, const BatchIntegrator& integrator,
       for (int x = 0; x < width; ++x) {
         sums.clear();
         for (int s = 0; s < spp; ++s) {
-          const std::size_t i = r * per_row + static_cast<std::size_t>(x) * spp + s;
-          for (std::size_t b = 0; b < bands; ++b) {
-            const double sample_l = l[i * bands + b];
-            sums.l[b] += sample_l;
-            sums.l2[b] += sample_l * sample_l;
-            sums.t[b] += t[i * bands + b];
-          }
+          const std::size_t i = (r * per_row + static_cast<std::size_t>(x) * spp + s) * bands;
+          sums.add(&l[i], &t[i]);
         }
         counters.samples_taken += spp;
         store_pixel(job, static_cast<std::size_t>(y) * width + x, sums, spp, image);

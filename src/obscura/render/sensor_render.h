@@ -49,6 +49,14 @@ struct PixelSums {
     std::fill(l2.begin(), l2.end(), 0.0);
     std::fill(t.begin(), t.end(), 0.0);
   }
+  // Adds one sample's band radiances l[b] and transmittances t[b].
+  void add(const double* sample_l, const double* sample_t) {
+    for (std::size_t b = 0; b < l.size(); ++b) {
+      l[b] += sample_l[b];
+      l2[b] += sample_l[b] * sample_l[b];
+      t[b] += sample_t[b];
+    }
+  }
 };
 
 // Everything one sensor's render shares between its rows.
@@ -64,7 +72,7 @@ struct SensorRender {
   // One camera sample at image position (px, py): band radiance and
   // response-weighted transmittance added to `sums`.
   void sample(double px, double py, Rng& rng, RayWorkspace& ws, PixelSums& sums) const {
-    const CameraRay camera = find_camera_ray_hit(scene, sensor.camera.generate_ray(px, py));
+    const CameraRay camera = camera_ray(px, py);
     integrator.begin_ray(camera, ws);
     const double air_m = air_path_m(scene, camera);
     NodeArray radiance, transmittance;
@@ -106,6 +114,24 @@ struct SensorRender {
     const int strata_y = (spp + strata_x - 1) / strata_x;
     px = x + (s % strata_x + rng.uniform()) / strata_x;
     py = y + (s / strata_x + rng.uniform()) / strata_y;
+  }
+
+  // The camera ray through image position (px, py) with its first surface.
+  CameraRay camera_ray(double px, double py) const {
+    return find_camera_ray_hit(scene, sensor.camera.generate_ray(px, py));
+  }
+
+  // The samples_per_pixel camera rays of pixel (x, y) into out[0…spp), drawn
+  // from the pixel's own stream as pixel() draws them (for batched
+  // integrators, whose pixels must equal the ray-by-ray ones).
+  void pixel_rays(int x, int y, CameraRay* out) const {
+    const int spp = scene.settings.samples_per_pixel;
+    Rng rng(scene.settings.seed, static_cast<std::size_t>(y) * sensor.camera.width() + x);
+    for (int s = 0; s < spp; ++s) {
+      double px, py;
+      sample_position(x, y, s, rng, px, py);
+      out[s] = camera_ray(px, py);
+    }
   }
 
   // All samples of pixel (x, y): rounds of samples_per_pixel stratified

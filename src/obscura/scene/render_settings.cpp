@@ -136,9 +136,23 @@ std::string_view render_device_name(RenderDevice device) {
   return device == RenderDevice::kGpu ? "gpu" : "cpu";
 }
 
+namespace {
+
+// A count set per band (parse_count_by_band): band's own, else `all`.
+template <class Count>
+Count count_of_band(const std::map<std::string, Count>& by_band, Count all, const Band& band) {
+  const auto it = by_band.find(band.name());
+  return it == by_band.end() ? all : it->second;
+}
+
+}  // namespace
+
 int RenderSettings::spectral_nodes(const Band& band) const {
-  const auto it = spectral_nodes_by_band.find(band.name());
-  return it == spectral_nodes_by_band.end() ? spectral_nodes_per_band : it->second;
+  return count_of_band(spectral_nodes_by_band, spectral_nodes_per_band, band);
+}
+
+long long RadianceCacheSettings::photons(const Band& band) const {
+  return count_of_band(photons_by_band, photons_per_node, band);
 }
 
 bool method_scatters(RenderMethod method) { return info(method).scatters; }

@@ -83,6 +83,8 @@ struct RadianceCacheSettings {
   // not at all converges with far fewer: docs/performance.md). A node that
   // two bands share takes the larger count.
   std::map<std::string, long long> photons_by_band;
+  // The photons per node of band `band`'s nodes.
+  long long photons(const Band& band) const;
   int sh_degree = 2;  // spherical-harmonic degree of the incident radiance, 1–3
   // Splatting kernel half-width, in lattice spacings: a tent of that
   // half-width per axis (1: each photon to the 8 nodes around it).

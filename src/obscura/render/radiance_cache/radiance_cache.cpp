@@ -153,10 +153,8 @@ std::vector<long long> photons_of_nodes(const Scene& scene, const DistinctNodes&
       // Spectra that are not the scene's sensors' (a validation case's one
       // band, with no sensor) take photons_per_node.
       const bool of_sensor = s < scene.sensors.size() && b < scene.sensors[s].bands.size();
-      const auto named = of_sensor ? settings.photons_by_band.find(scene.sensors[s].bands[b].name())
-                                   : settings.photons_by_band.end();
       const long long count =
-          named == settings.photons_by_band.end() ? settings.photons_per_node : named->second;
+          of_sensor ? settings.photons(scene.sensors[s].bands[b]) : settings.photons_per_node;
       for (const int u : distinct.index[s][b])
         photons[static_cast<std::size_t>(u)] =
             std::max(photons[static_cast<std::size_t>(u)], count);
