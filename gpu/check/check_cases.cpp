@@ -72,8 +72,10 @@ std::vector<double> slice(const std::vector<double>& v, std::size_t k, std::size
           v.begin() + static_cast<std::ptrdiff_t>((k + 1) * count)};
 }
 
-// Prints output k's radiance and transmittance differences, the means over
-// the rays the medium dims; true when they agree.
+// Prints output k's radiance and transmittance differences (and the
+// attenuation's, what the background is seen through: the transmittance, or
+// more with the radiance cache's delta-M), the means over the rays the
+// medium dims; true when they agree.
 bool compare_output(const char* label, const BothMarches& m, std::size_t k, std::size_t count) {
   const std::vector<double> cpu_t = slice(m.cpu.transmittance, k, count);
   std::vector<bool> dimmed(count);
@@ -85,14 +87,16 @@ bool compare_output(const char* label, const BothMarches& m, std::size_t k, std:
   const ImageDifference l =
       image_difference(slice(m.gpu.radiance, k, count), slice(m.cpu.radiance, k, count), dimmed);
   const ImageDifference t = image_difference(slice(m.gpu.transmittance, k, count), cpu_t, dimmed);
-  const bool ok = agrees(l) && agrees(t);
+  const ImageDifference a = image_difference(slice(m.gpu.attenuation, k, count),
+                                             slice(m.cpu.attenuation, k, count), dimmed);
+  const bool ok = agrees(l) && agrees(t) && agrees(a);
   // What the images hold (a comparison of empty images would prove nothing):
   // the CPU's mean radiance and the share of rays the medium dims.
   std::printf(
       "  %-18s L %.3e, %3.0f%% dimmed   radiance %.2e / %.2e   transmittance %.2e / %.2e   "
-      "%s\n",
+      "attenuation %.2e / %.2e   %s\n",
       label, mean_l, 100.0 * static_cast<double>(l.pixels) / static_cast<double>(count), l.mean,
-      l.worst, t.mean, t.worst, ok ? "ok" : "DISAGREE");
+      l.worst, t.mean, t.worst, a.mean, a.worst, ok ? "ok" : "DISAGREE");
   if (!ok)
     std::printf("    worst radiance at ray %zu: gpu %.9g cpu %.9g\n", l.worst_pixel,
                 m.gpu.radiance[k * count + l.worst_pixel],

@@ -124,14 +124,15 @@ TEST(MarchJob, CacheItemsEqualTheCpuMarchBitForBitAtEveryDegree) {
     const int record[3] = {0, 1, 2};
     int lit = 0;
     for (std::size_t i = 0; i < rays.size(); ++i) {
-      double l[3] = {0, 0, 0}, t[3] = {1, 1, 1};
+      double l[3] = {0, 0, 0}, t[3] = {1, 1, 1}, a[3] = {1, 1, 1};
       const std::uint64_t cells =
-          march_cache_lattice(scene, cache, rays[i], band, record, cache.peak_channel(0), l, t);
+          march_cache_lattice(scene, cache, rays[i], band, record, cache.peak_channel(0), l, t, a);
       lit += l[0] > 0;
       for (std::size_t j = 0; j < 3; ++j) {
         ASSERT_EQ(result.radiance[j * rays.size() + i], l[j])
             << "degree " << degree << " ray " << i;
         ASSERT_EQ(result.transmittance[j * rays.size() + i], t[j]);
+        ASSERT_EQ(result.attenuation[j * rays.size() + i], a[j]);
         ASSERT_EQ(result.cells[j * rays.size() + i], cells);
       }
     }

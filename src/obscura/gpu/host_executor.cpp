@@ -99,6 +99,7 @@ void HostExecutor::march(const MarchRequest& request, std::span<const MarchRay> 
   const std::uint64_t items = job.items();
   result.radiance.assign(items, 0.0);
   result.transmittance.assign(items, 1.0);
+  result.attenuation.assign(items, 1.0);
   result.cells.assign(items, 0);
   job.records = frame_.records.data();
   job.planck = frame_.planck.data();
@@ -107,6 +108,7 @@ void HostExecutor::march(const MarchRequest& request, std::span<const MarchRay> 
   job.rays = rays.data();
   job.radiance = result.radiance.data();
   job.transmittance = result.transmittance.data();
+  job.attenuation = result.attenuation.data();
   job.cells = result.cells.data();
   if (items > 0)
     dispatch_march(job, [&](auto stride, auto kind) {

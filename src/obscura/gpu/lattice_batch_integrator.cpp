@@ -134,6 +134,7 @@ void LatticeBatchIntegrator::march_batch(int sensor, std::span<const CameraRay> 
   if (!volume()) {  // no medium: nothing in front of the background
     out.radiance.assign(items, 0.0);
     out.transmittance.assign(items, 1.0);
+    out.attenuation.assign(items, 1.0);
     return;
   }
   std::vector<MarchRay> march_rays(count);
@@ -144,6 +145,7 @@ void LatticeBatchIntegrator::march_batch(int sensor, std::span<const CameraRay> 
       [&] { executor_->march(requests_[static_cast<std::size_t>(sensor)], march_rays, result); });
   out.radiance = std::move(result.radiance);
   out.transmittance = std::move(result.transmittance);
+  out.attenuation = std::move(result.attenuation);
   // Cells per band, as the CPU's integrators count them: once per ray and
   // band (all nodes of a band cross the same cells: its first node's count).
   for (std::size_t b = 0; b < bands.size(); ++b)

@@ -56,7 +56,7 @@ struct MarchRequest {
 
 // Per item (output k, ray i) at [k · rays + i]: MarchJob's outputs.
 struct MarchResult {
-  std::vector<double> radiance, transmittance;
+  std::vector<double> radiance, transmittance, attenuation;
   std::vector<std::uint32_t> cells;
 };
 

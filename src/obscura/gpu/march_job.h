@@ -49,7 +49,10 @@ struct MarchJob {
   const MarchRay* rays = nullptr;
   double* radiance = nullptr;       // per item: W m⁻² sr⁻¹ µm⁻¹ the medium sends
   double* transmittance = nullptr;  // per item: the medium's, to the ray's end
-  std::uint32_t* cells = nullptr;   // per item: cells visited
+  // Per item: what the radiance behind the medium is seen through (kCache
+  // with delta-M: e^{−∫(σt − f σs)}, cache_source.h; else the transmittance).
+  double* attenuation = nullptr;
+  std::uint32_t* cells = nullptr;  // per item: cells visited
   std::uint64_t ray_count = 0;
   std::int32_t outputs = 0;
   std::int32_t stride = record::kMediumStride;  // floats per record
@@ -68,10 +71,10 @@ static_assert(std::is_trivially_copyable_v<MarchRay> && sizeof(MarchRay) == 56 &
               offsetof(MarchRay, direction) == 24 && offsetof(MarchRay, t_end) == 48);
 static_assert(std::is_trivially_copyable_v<MarchJob> && std::is_standard_layout_v<MarchJob>);
 static_assert(offsetof(MarchJob, records) == sizeof(LatticeView) &&
-              offsetof(MarchJob, ray_count) == sizeof(LatticeView) + 64 &&
-              offsetof(MarchJob, outputs) == sizeof(LatticeView) + 72 &&
-              offsetof(MarchJob, to_sun) == sizeof(LatticeView) + 96 &&
-              sizeof(MarchJob) == sizeof(LatticeView) + 120);
+              offsetof(MarchJob, ray_count) == sizeof(LatticeView) + 72 &&
+              offsetof(MarchJob, outputs) == sizeof(LatticeView) + 80 &&
+              offsetof(MarchJob, to_sun) == sizeof(LatticeView) + 104 &&
+              sizeof(MarchJob) == sizeof(LatticeView) + 128);
 static_assert(sizeof(PlanckTableView) == 32);
 
 // The spherical-harmonic degree whose light records are Stride floats
@@ -96,12 +99,13 @@ OBSCURA_HOST_DEVICE void march_item(const MarchJob& job, std::uint64_t item) {
   const MarchRay& r = job.rays[i];
   const Ray ray{r.origin, r.direction};
   const float* const records = job.records[u];
-  double radiance = 0.0, transmittance = 1.0;
+  double radiance = 0.0, transmittance = 1.0, attenuation = 1.0;
   std::uint64_t cells = 0;
   if constexpr (Kind == MarchSource::kEmission) {
     const EmissionSource source{job.planck + u};
     cells = march_lattice_view<Stride, 1>(job.lattice, &records, 1, ray, r.t_end, source, &radiance,
                                           &transmittance);
+    attenuation = transmittance;
   } else {
     constexpr int kDegree = sh_degree_of_stride(Stride);
     static_assert(kDegree >= 0, "no light records are this long");
@@ -109,10 +113,11 @@ OBSCURA_HOST_DEVICE void march_item(const MarchJob& job, std::uint64_t item) {
                            job.peak_channel);
     const CacheSource source{job.planck + u, light};
     cells = march_lattice_view<Stride, 1>(job.lattice, &records, 1, ray, r.t_end, source, &radiance,
-                                          &transmittance);
+                                          &transmittance, &attenuation);
   }
   job.radiance[item] = radiance;
   job.transmittance[item] = transmittance;
+  job.attenuation[item] = attenuation;
   job.cells[item] = static_cast<std::uint32_t>(cells);
 }
 

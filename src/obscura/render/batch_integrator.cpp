@@ -45,7 +45,7 @@ void BatchIntegrator::band_radiance(const CameraRay& ray, int sensor, int band, 
                   behind.data());
   for (std::size_t j = 0; j < nodes.size(); ++j) {
     transmittance[j] = batch.transmittance[first + j];
-    radiance[j] = batch.radiance[first + j] + transmittance[j] * behind[j];
+    radiance[j] = batch.radiance[first + j] + batch.attenuation[first + j] * behind[j];
   }
 }
 

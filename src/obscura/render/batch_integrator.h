@@ -21,8 +21,10 @@ namespace obscura {
 struct MediumBatch {
   std::size_t count = 0;
   // The radiance (W m⁻² sr⁻¹ µm⁻¹) the medium sends back along the ray up to
-  // its end, and the medium's transmittance to there.
-  std::vector<double> radiance, transmittance;
+  // its end, the medium's transmittance to there, and what the radiance
+  // behind it is seen through (the transmittance, or more where the
+  // radiance cache takes delta-M: render/radiance_cache/cache_march.h).
+  std::vector<double> radiance, transmittance, attenuation;
   // Per band: the medium cells its rays visited (RenderStats::segments; the
   // CPU's integrators count a ray's cells once per band).
   std::vector<std::uint64_t> band_cells;

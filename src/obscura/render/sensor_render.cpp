@@ -80,7 +80,7 @@ void batch_sample_sums(const SensorRender& job, const BatchIntegrator& integrato
           for (std::size_t j = 0; j < nodes.size(); ++j) {
             const std::size_t at = (first[b] + j) * count + i;
             transmittance[j] = batch.transmittance[at];
-            radiance[j] = batch.radiance[at] + transmittance[j] * behind[j];
+            radiance[j] = batch.radiance[at] + batch.attenuation[at] * behind[j];
           }
           job.add_band(b, air_m, radiance.data(), transmittance.data(), sums);
         }

@@ -120,5 +120,36 @@ TEST(CellQuadrature, CellThatStartsEmptyStaysBounded) {
   EXPECT_LE(c.emitted, 2.0 * -std::expm1(-d) * (1 + 1e-12));
 }
 
+// Delta-M's cell (add_cell_forward): the radiance integrated with σt − φ and
+// seen through the attenuation e^{−∫(σt − φ)}, the transmittance the exact
+// e^{−∫σt}; with φ = 0 the same bits as add_cell.
+TEST(CellQuadrature, AForwardPartLightensTheRadiancesExtinctionAlone) {
+  const double h = 0.8;
+  const double st0[2] = {1.5, 0.2}, st1[2] = {2.5, 0.3}, st2[2] = {2.0, 0.1};
+  const double em0[2] = {3.0, 0.5}, em1[2] = {4.0, 0.7}, em2[2] = {3.5, 0.2};
+  const double fw0[2] = {0.6, 0.0}, fw1[2] = {0.9, 0.0}, fw2[2] = {0.7, 0.0};
+  const double* st[3] = {st0, st1, st2};
+  const double* em[3] = {em0, em1, em2};
+  const double* fw[3] = {fw0, fw1, fw2};
+  double radiance[2] = {0.25, 0.5}, transmittance[2] = {0.8, 0.6}, attenuation[2] = {0.9, 0.6};
+  add_cell_forward(h, 2, st, fw, em, radiance, transmittance, attenuation);
+
+  // Node 0 keeps φ: its emission and attenuation are the cell's with σt − φ.
+  const double scaled[3] = {1.5 - 0.6, 2.5 - 0.9, 2.0 - 0.7}, em_0[3] = {3.0, 4.0, 3.5};
+  const CellEmission c = integrate_cell(h, scaled, em_0);
+  EXPECT_DOUBLE_EQ(radiance[0], 0.25 + 0.9 * c.emitted);
+  EXPECT_DOUBLE_EQ(attenuation[0], 0.9 * std::exp(-h / 6.0 * (0.9 + 4.0 * 1.6 + 1.3)));
+  EXPECT_DOUBLE_EQ(transmittance[0], 0.8 * std::exp(-h / 6.0 * (1.5 + 4.0 * 2.5 + 2.0)));
+
+  // Node 1 keeps none: add_cell's bits, and its attenuation is its transmittance's factor.
+  double radiance_1 = 0.5, transmittance_1 = 0.6;
+  const double* st_1[3] = {st0 + 1, st1 + 1, st2 + 1};
+  const double* em_1[3] = {em0 + 1, em1 + 1, em2 + 1};
+  add_cell(h, 1, st_1, em_1, &radiance_1, &transmittance_1);
+  EXPECT_EQ(radiance[1], radiance_1);
+  EXPECT_EQ(transmittance[1], transmittance_1);
+  EXPECT_EQ(attenuation[1], transmittance_1);
+}
+
 }  // namespace
 }  // namespace obscura

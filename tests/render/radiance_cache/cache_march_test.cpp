@@ -60,17 +60,19 @@ TEST(CacheMarch, OverTheRecordsEqualsOverTheMediumsCells) {
         camera.on_surface = true;
         camera.hit.t = 5.0 * rng.uniform();
       }
-      double l_records[3] = {0, 0, 0}, t_records[3] = {1, 1, 1};
-      double l_medium[3] = {0, 0, 0}, t_medium[3] = {1, 1, 1};
-      const auto a =
-          march_cache_lattice(scene, cache, camera, nodes, record, -1, l_records, t_records);
-      const auto b = march_cache_medium(scene, cache, camera, nodes, record, l_medium, t_medium);
+      double l_records[3] = {0, 0, 0}, t_records[3] = {1, 1, 1}, a_records[3] = {1, 1, 1};
+      double l_medium[3] = {0, 0, 0}, t_medium[3] = {1, 1, 1}, a_medium[3] = {1, 1, 1};
+      const auto a = march_cache_lattice(scene, cache, camera, nodes, record, -1, l_records,
+                                         t_records, a_records);
+      const auto b =
+          march_cache_medium(scene, cache, camera, nodes, record, l_medium, t_medium, a_medium);
       EXPECT_EQ(a, b) << "degree " << degree << " ray " << i;
       lit += l_medium[0] > 0;
       for (int j = 0; j < 3; ++j) {
         EXPECT_NEAR(l_records[j], l_medium[j], 1e-5 * std::abs(l_medium[j]) + 1e-9)
             << "degree " << degree << " ray " << i << " node " << j;
         EXPECT_NEAR(t_records[j], t_medium[j], 2e-6 * t_medium[j] + 1e-12);
+        EXPECT_NEAR(a_records[j], a_medium[j], 2e-6 * a_medium[j] + 1e-12);
       }
     }
     EXPECT_GT(lit, 100);

@@ -195,10 +195,12 @@ TEST_P(RadianceCacheFurnace, AConservativeGridCloudIsTheSkysRadiance) {
 
 INSTANTIATE_TEST_SUITE_P(KernelRadius, RadianceCacheFurnace, ::testing::Values(1, 2, 3));
 
-// A conservative box cloud (g 0.5) under a uniform 300 K sky, seen by
-// `camera` in the LWIR at one spectral node through the radiance cache with
-// 4·10⁶ photons; uniform_sky_radiance is that sky's radiance in the band.
-Scene box_under_a_uniform_sky(const PinholeCamera& camera, const BBox3& box, double sigma_s) {
+// A conservative box cloud (g 0.5 unless given) under a uniform 300 K sky,
+// seen by `camera` in the LWIR at one spectral node through the radiance
+// cache with 4·10⁶ photons; uniform_sky_radiance is that sky's radiance in
+// the band.
+Scene box_under_a_uniform_sky(const PinholeCamera& camera, const BBox3& box, double sigma_s,
+                              double g = 0.5) {
   Scene scene;
   Sensor sensor;
   sensor.name = "cam";
@@ -207,7 +209,7 @@ Scene box_under_a_uniform_sky(const PinholeCamera& camera, const BBox3& box, dou
   scene.sensors.push_back(sensor);
   scene.medium = std::make_shared<HomogeneousMedium>(
       box, std::vector<double>{10.0}, std::vector<double>{0.0}, std::vector<double>{sigma_s},
-      std::vector<double>{0.5}, 300.0);
+      std::vector<double>{g}, 300.0);
   scene.sky = Sky::blackbody(300.0, true);
   scene.settings.method = RenderMethod::kRadianceCache;
   scene.settings.spectral_nodes_per_band = 1;
@@ -267,6 +269,34 @@ TEST(RadianceCacheFurnace, AThickBoxSeenFaceOnIsTheSkysRadiance) {
   // photons, −1.79 % with the entry unread; at 2·10⁶ photons +0.15, +0.69,
   // +0.51 % (seeds 3–5): photon noise.
   EXPECT_NEAR(mean, 0.0, 0.008);
+}
+
+// Delta-M (cache_source.h) in the furnace: a box (not a grid, so every ray
+// takes it) of g 0.85, where f = g³ = 0.61 of the scattering is kept along
+// the ray, is still the sky's radiance: J = (1 − f) L0 over σt − f σs, and
+// the sky behind it is seen through e^{−∫(σt − f σs)}, not the exact
+// transmittance (with which the image would read 1 − T* + T). The
+// transmittance image stays the exact e^{−τ}: emission–absorption's.
+TEST(RadianceCacheFurnace, DeltaMKeepsAForwardPeakedCloudTheSkysRadiance) {
+  Scene scene =
+      box_under_a_uniform_sky(PinholeCamera({0, -14, 4}, {0, 0, 0.5}, {0, 0, 1}, 30.0, 24, 12),
+                              BBox3({-5, -5, 0}, {5, 5, 1}), 1.0, 0.85);
+  const SensorImage img = testing::render_first_sensor(scene, 2, 3);
+  Scene ea = box_under_a_uniform_sky(scene.sensors[0].camera, scene.medium->bounds(), 1.0, 0.85);
+  ea.settings.method = RenderMethod::kEmissionAbsorption;
+  const SensorImage exact = testing::render_first_sensor(ea, 2, 3);
+  const double l0 = uniform_sky_radiance();
+  double sum = 0.0;
+  int cloud = 0;
+  for (std::size_t p = 0; p < img.bands[0].radiance.size(); ++p) {
+    const float t = exact.bands[0].transmittance[p];
+    EXPECT_NEAR(img.bands[0].transmittance[p], t, 1e-6 * t + 1e-12) << "pixel " << p;
+    if (t == 1.0f) continue;  // the sky, past the cloud
+    sum += img.bands[0].radiance[p] / l0 - 1.0;
+    ++cloud;
+  }
+  ASSERT_GT(cloud, 100);
+  EXPECT_NEAR(sum / cloud, 0.0, 0.01);
 }
 
 TEST(EmissionAbsorptionBackground, ACloudShadesTheSunlitGround) {

@@ -104,6 +104,13 @@ TEST(SphericalHarmonics, TheFloatConvolutionAgreesWithTheDoubleOne) {
       EXPECT_NEAR(HgConvolution(y, degree)(c.data(), g), hg_convolved(exact.data(), y, g, degree),
                   1e-6 * magnitude)
           << "degree " << degree << ", g " << g;
+      // Delta-M's weights g^l − f: the convolution less f times the plain sum.
+      const double f = g > 0.0 ? std::pow(g, degree + 1) : 0.0;
+      const double delta_m =
+          hg_convolved(exact.data(), y, g, degree) - f * hg_convolved(exact.data(), y, 1.0, degree);
+      EXPECT_NEAR(hg_convolved(exact.data(), y, g, degree, f), delta_m, 1e-12 * magnitude);
+      EXPECT_NEAR(HgConvolution(y, degree)(c.data(), g, f), delta_m, 1e-6 * magnitude)
+          << "degree " << degree << ", g " << g;
     }
 }
 

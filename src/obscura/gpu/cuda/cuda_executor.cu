@@ -63,7 +63,7 @@ struct CudaExecutor::Device {
   // A march's scratch, kept between calls (grown as needed).
   DeviceBuffer<MarchRay> rays;
   DeviceBuffer<std::int32_t> output_node;
-  DeviceBuffer<double> radiance, transmittance;
+  DeviceBuffer<double> radiance, transmittance, attenuation;
   DeviceBuffer<std::uint32_t> cells;
 
   void synchronize() const { OBSCURA_CUDA(cudaStreamSynchronize(stream)); }
@@ -161,6 +161,7 @@ void CudaExecutor::march(const MarchRequest& request, std::span<const MarchRay> 
   const std::uint64_t items = job.items();
   result.radiance.resize(items);
   result.transmittance.resize(items);
+  result.attenuation.resize(items);
   result.cells.resize(items);
   if (items == 0) {
     d.times = {};
@@ -171,6 +172,7 @@ void CudaExecutor::march(const MarchRequest& request, std::span<const MarchRay> 
   d.output_node.upload(request.output_node, s);
   d.radiance.reserve(items);
   d.transmittance.reserve(items);
+  d.attenuation.reserve(items);
   d.cells.reserve(items);
   job.records = d.record_pointers.data();
   job.planck = d.planck.data();
@@ -179,12 +181,14 @@ void CudaExecutor::march(const MarchRequest& request, std::span<const MarchRay> 
   job.rays = d.rays.data();
   job.radiance = d.radiance.data();
   job.transmittance = d.transmittance.data();
+  job.attenuation = d.attenuation.data();
   job.cells = d.cells.data();
   d.timer.start(s);
   launch_march(job, s);
   d.timer.stop(s);
   d.radiance.download(result.radiance.data(), items, s);
   d.transmittance.download(result.transmittance.data(), items, s);
+  d.attenuation.download(result.attenuation.data(), items, s);
   d.cells.download(result.cells.data(), items, s);
   d.synchronize();
   OBSCURA_CUDA(cudaGetLastError());

@@ -99,6 +99,14 @@ OBSCURA_ALWAYS_INLINE OBSCURA_HOST_DEVICE inline CellEmission integrate_cell(
   return out;
 }
 
+// The cell's e^{−D} alone, with integrate_cell's arithmetic (the same bits).
+OBSCURA_ALWAYS_INLINE OBSCURA_HOST_DEVICE inline double cell_transmittance(
+    double h, const double sigma_t[3]) {
+  const double d = h * (1.0 / 6.0) * (sigma_t[0] + 4.0 * sigma_t[1] + sigma_t[2]);
+  if (!(d > 0.0)) return 1.0;
+  return d < kThinCell ? exp_neg_small(d) : fast_exp(-d);
+}
+
 // One cell of a march for `count` spectral nodes, node j's σt and ε at the
 // cell's entry, middle and exit in sigma_t[p][j] and emissivity[p][j]: adds
 // to radiance[j] the cell's emission seen through transmittance[j] (the line
@@ -112,6 +120,32 @@ OBSCURA_HOST_DEVICE inline void add_cell(double h, int count, const double* cons
     const CellEmission c = integrate_cell(h, st, em);
     radiance[j] += transmittance[j] * c.emitted;
     transmittance[j] *= c.transmittance;
+  }
+}
+
+// The same where the radiance's extinction along the ray is σt − φ, φ the
+// scattering the source keeps in the ray's own direction (delta-M:
+// φ = f σs, docs/physics.md, "Delta-M where a ray has no forward peak"),
+// given at the same points in forward[p][j]: the cell's emission is
+// integrated with σt − φ and seen through attenuation[j] (the line's
+// e^{−∫(σt − φ)} so far), which the cell then attenuates, while
+// transmittance[j] takes the line's exact e^{−∫σt}. Where φ is zero at the
+// three points both equal add_cell's, bit for bit.
+OBSCURA_HOST_DEVICE inline void add_cell_forward(double h, int count,
+                                                 const double* const sigma_t[3],
+                                                 const double* const forward[3],
+                                                 const double* const emissivity[3],
+                                                 double* radiance, double* transmittance,
+                                                 double* attenuation) {
+  for (int j = 0; j < count; ++j) {
+    const double st[3] = {sigma_t[0][j], sigma_t[1][j], sigma_t[2][j]};
+    const double em[3] = {emissivity[0][j], emissivity[1][j], emissivity[2][j]};
+    const bool kept = forward[0][j] != 0.0 || forward[1][j] != 0.0 || forward[2][j] != 0.0;
+    const double scaled[3] = {st[0] - forward[0][j], st[1] - forward[1][j], st[2] - forward[2][j]};
+    const CellEmission c = integrate_cell(h, kept ? scaled : st, em);
+    radiance[j] += attenuation[j] * c.emitted;
+    attenuation[j] *= c.transmittance;
+    transmittance[j] *= kept ? cell_transmittance(h, st) : c.transmittance;
   }
 }
 

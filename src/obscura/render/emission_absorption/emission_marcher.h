@@ -16,6 +16,12 @@
 // the pieces' points, as the lattice march does
 // (render/lattice/lattice_view_march.h, docs/physics.md). (The emission of
 // overlapping clouds there is σa B at the point's one temperature.)
+//
+// An in-scattering source that keeps part of the scattering in the ray's own
+// direction (forward_fraction(g): delta-M's f, the radiance cache's rays
+// without a forward peak) has the radiance integrated with σt − f σs and
+// seen through `attenuation`, the transmittance staying exact
+// (add_cell_forward, cell_quadrature.h).
 #include <array>
 #include <vector>
 
@@ -37,14 +43,16 @@ struct NoInScattering {
 template <typename InScattering>
 class EmissionMarcher final : public MarchVisitor {
  public:
-  // Adds to radiance[j] and multiplies transmittance[j], j over the nodes.
+  // Adds to radiance[j] and multiplies transmittance[j] (and, for a source
+  // that keeps forward scattering, attenuation[j]), j over the nodes.
   EmissionMarcher(const SpectralNodes& nodes, InScattering& in_scattering, double* radiance,
-                  double* transmittance)
+                  double* transmittance, double* attenuation = nullptr)
       : nodes_(nodes),
         count_(static_cast<int>(nodes.size())),
         in_scattering_(in_scattering),
         radiance_(radiance),
-        transmittance_(transmittance) {}
+        transmittance_(transmittance),
+        attenuation_(attenuation) {}
 
   std::uint64_t cells() const { return cells_; }
 
@@ -56,10 +64,12 @@ class EmissionMarcher final : public MarchVisitor {
       for (int j = 0; j < count_; ++j) {
         sigma_t_[0][j] = sigma_t_[2][j];
         emissivity_[0][j] = emissivity_[2][j];
+        forward_[0][j] = forward_[2][j];
       }
     for (int p = reuse ? 1 : 0; p < 3; ++p) point(cell, p, t[p]);
     have_exit_ = true;
     const double* sigma_t[3] = {sigma_t_[0].data(), sigma_t_[1].data(), sigma_t_[2].data()};
+    const double* forward[3] = {forward_[0].data(), forward_[1].data(), forward_[2].data()};
     const double* emissivity[3] = {emissivity_[0].data(), emissivity_[1].data(),
                                    emissivity_[2].data()};
     if constexpr (kCutsSteepCells) {
@@ -76,13 +86,14 @@ class EmissionMarcher final : public MarchVisitor {
             continue;
           }
           const double* st[3] = {sigma_t[0] + j, sigma_t[1] + j, sigma_t[2] + j};
+          const double* fw[3] = {forward[0] + j, forward[1] + j, forward[2] + j};
           const double* em[3] = {emissivity[0] + j, emissivity[1] + j, emissivity[2] + j};
-          add_cell(cell.t_end - cell.t_begin, 1, st, em, radiance_ + j, transmittance_ + j);
+          add(cell.t_end - cell.t_begin, 1, st, fw, em, j);
         }
         return true;
       }
     }
-    add_cell(cell.t_end - cell.t_begin, count_, sigma_t, emissivity, radiance_, transmittance_);
+    add(cell.t_end - cell.t_begin, count_, sigma_t, forward, emissivity, 0);
     return true;
   }
 
@@ -92,6 +103,25 @@ class EmissionMarcher final : public MarchVisitor {
     in.sun_depths(0.0, tau);
     in.medium_at(0.0, m);
   };
+  static constexpr bool kKeepsForward = requires(InScattering & in) { in.forward_fraction(0.0); };
+
+  // Nodes j0 … j0 + count − 1 of a cell of length h.
+  void add(double h, int count, const double* const st[3], const double* const fw[3],
+           const double* const em[3], int j0) {
+    if constexpr (kKeepsForward)
+      add_cell_forward(h, count, st, fw, em, radiance_ + j0, transmittance_ + j0,
+                       attenuation_ + j0);
+    else
+      add_cell(h, count, st, em, radiance_ + j0, transmittance_ + j0);
+  }
+
+  // Delta-M's f σs at a point (0 without it).
+  double forward_at(double sigma_s, double g) const {
+    if constexpr (kKeepsForward)
+      return sigma_s > 0.0 ? in_scattering_.forward_fraction(g) * sigma_s : 0.0;
+    else
+      return 0.0;
+  }
 
   // Node j's cell in `pieces` equal pieces: the medium (InScattering::
   // medium_at: σa, σs, g and T at a point) and the light read at each
@@ -101,17 +131,20 @@ class EmissionMarcher final : public MarchVisitor {
     const SpectralNode& nd = nodes_.nodes()[j];
     const SpectralLerp lerp = nd.lerp();
     NodeArray sigma_s{}, g{}, emissivity{};
-    double st[3], em[3];
+    double st[3], fw[3], em[3];
     st[2] = sigma_t_[0][j];
+    fw[2] = forward_[0][j];
     em[2] = emissivity_[0][j];
     for (int k = 0; k < pieces; ++k) {
       st[0] = st[2];
+      fw[0] = fw[2];
       em[0] = em[2];
       for (int p = 1; p < 3; ++p) {
         if (k == pieces - 1 && p == 2) {
           // The cell's own exit, read already (a point on the medium's box
           // would read as outside it there after rounding).
           st[2] = sigma_t_[2][j];
+          fw[2] = forward_[2][j];
           em[2] = emissivity_[2][j];
           continue;
         }
@@ -128,11 +161,13 @@ class EmissionMarcher final : public MarchVisitor {
                         : 0.0;
         emissivity[j] = sa != 0.0 ? sa * (*nd.planck_table)(medium_point_.temperature_k) : 0.0;
         in_scattering_.add(cell, p, t, sigma_s.data(), g.data(), emissivity.data());
+        fw[p] = forward_at(ss, g[j]);
         em[p] = emissivity[j];
       }
       const double* pst[3] = {st, st + 1, st + 2};
+      const double* pfw[3] = {fw, fw + 1, fw + 2};
       const double* pem[3] = {em, em + 1, em + 2};
-      add_cell(step, 1, pst, pem, radiance_ + j, transmittance_ + j);
+      add(step, 1, pst, pfw, pem, j);
     }
   }
 
@@ -160,6 +195,7 @@ class EmissionMarcher final : public MarchVisitor {
       emissivity_[p][j] = em;
       sigma_s[j] = ss;
       g[j] = ss > 0.0 ? gs / ss : 0.0;
+      forward_[p][j] = forward_at(ss, g[j]);
     }
     in_scattering_.add(cell, p, t, sigma_s.data(), g.data(), emissivity_[p].data());
   }
@@ -169,7 +205,8 @@ class EmissionMarcher final : public MarchVisitor {
   InScattering& in_scattering_;
   double* radiance_;
   double* transmittance_;
-  std::array<NodeArray, 3> sigma_t_{}, emissivity_{};
+  double* attenuation_;
+  std::array<NodeArray, 3> sigma_t_{}, forward_{}, emissivity_{};
   MediumPoint medium_point_;  // cut_cell's
   bool have_exit_ = false;
   std::uint64_t cells_ = 0;

@@ -16,6 +16,14 @@
 //     // Optional: a record channel holding an optical depth (the sun's) that
 //     // ε falls off with as e^{−value}.
 //     static constexpr int kSteepChannel = …;
+//     // Optional: the scattering the source keeps in the ray's own
+//     // direction, φ (1/m; delta-M), given by a point with a fifth
+//     // argument: the radiance is then integrated with σt − φ and seen
+//     // through the march's `attenuation`, while `transmittance` stays the
+//     // line's exact e^{−τ} (add_cell_forward, cell_quadrature.h).
+//     static constexpr bool kKeepsForward = true;
+//     void point(int j, const float* values, double& sigma_t, double& emissivity,
+//                double& forward) const;
 //   };
 //
 // The cell quadrature fits a parabola to the source function through three
@@ -241,6 +249,15 @@ OBSCURA_HOST_DEVICE inline void cell_fractions(const double o[3], const double d
   }
 }
 
+// Source::kKeepsForward, or false when the source has none.
+template <class Source>
+constexpr bool keeps_forward() {
+  if constexpr (requires { Source::kKeepsForward; })
+    return Source::kKeepsForward;
+  else
+    return false;
+}
+
 // Calls visit(cell, t0, t1, slot) for the cells of the lattice along the
 // lattice ray o + t d, t in [t_begin, t_end], in order, that have some corner
 // holding medium and a positive length: first the 8³ blocks the lattice
@@ -289,13 +306,16 @@ OBSCURA_ALWAYS_INLINE OBSCURA_HOST_DEVICE inline void for_each_cell(const Lattic
 // origin over [0, t_max] and multiplies transmittance[j] by the line's e^{−τ},
 // for `nodes` (≤ MaxNodes) spectral nodes whose records start at records[j].
 // `lray` is in lattice coordinates (LatticeView::to_lattice, to_lattice_direction),
-// its parameter in metres. Returns the cells visited.
+// its parameter in metres. A source that keeps forward scattering
+// (Source::kKeepsForward) also multiplies attenuation[j] by the e^{−∫(σt − φ)}
+// the radiance was seen through. Returns the cells visited.
 template <int Stride, int MaxNodes, class Source>
 OBSCURA_HOST_DEVICE std::uint64_t march_lattice_ray(const LatticeView& lattice,
                                                     const float* const* records, int nodes,
                                                     const Ray& lray, double t_max,
                                                     const Source& source, double* radiance,
-                                                    double* transmittance) {
+                                                    double* transmittance,
+                                                    double* attenuation = nullptr) {
   namespace d = lattice_march_detail;
   double t_begin = 0.0, t_end = t_max;
   if (!lattice.domain.intersect(lray, t_begin, t_end) || !(t_end > t_begin)) return 0;
@@ -304,9 +324,13 @@ OBSCURA_HOST_DEVICE std::uint64_t march_lattice_ray(const LatticeView& lattice,
   // σt and ε at the cell's entry, middle and exit, per node: pointers into
   // `values_at`, the entry and exit swapped when the exit is reused (a
   // device thread's one node copies instead, so that it stays in registers).
-  double values_at[6][MaxNodes];
+  constexpr bool kForward = d::keeps_forward<Source>();
+  double values_at[kForward ? 9 : 6][MaxNodes];
   double* sigma_t[3] = {values_at[0], values_at[1], values_at[2]};
   double* emissivity[3] = {values_at[3], values_at[4], values_at[5]};
+  // φ at the three points (kForward only).
+  double* forward[3] = {values_at[kForward ? 6 : 0], values_at[kForward ? 7 : 1],
+                        values_at[kForward ? 8 : 2]};
   float frac[3];
   // Zero beyond the record: a CPU source may read its last channels in
   // whole groups of four (HgConvolution::readable).
@@ -327,7 +351,10 @@ OBSCURA_HOST_DEVICE std::uint64_t march_lattice_ray(const LatticeView& lattice,
     const d::RecordInterpolation<Stride> interpolate(frac);
     for (int j = 0; j < n; ++j) {
       interpolate(records[j], slot, values);
-      source.point(j, values, sigma_t[p][j], emissivity[p][j]);
+      if constexpr (kForward)
+        source.point(j, values, sigma_t[p][j], emissivity[p][j], forward[p][j]);
+      else
+        source.point(j, values, sigma_t[p][j], emissivity[p][j]);
       if constexpr (kSteep >= 0)
         if (steep) steep[j] = values[kSteep];
     }
@@ -336,10 +363,20 @@ OBSCURA_HOST_DEVICE std::uint64_t march_lattice_ray(const LatticeView& lattice,
     if constexpr (MaxNodes == 1) {
       sigma_t[0][0] = sigma_t[2][0];
       emissivity[0][0] = emissivity[2][0];
+      if constexpr (kForward) forward[0][0] = forward[2][0];
     } else {
       std::swap(sigma_t[0], sigma_t[2]);
       std::swap(emissivity[0], emissivity[2]);
+      if constexpr (kForward) std::swap(forward[0], forward[2]);
     }
+  };
+  // Node j0's … j0 + count − 1's cell of length h.
+  auto add = [&](double h, int count, const double* const st[3], const double* const fw[3],
+                 const double* const em[3], int j0) OBSCURA_ALWAYS_INLINE {
+    if constexpr (kForward)
+      add_cell_forward(h, count, st, fw, em, radiance + j0, transmittance + j0, attenuation + j0);
+    else
+      add_cell(h, count, st, em, radiance + j0, transmittance + j0);
   };
   d::for_each_cell(
       lattice, o, dir, t_begin, t_end,
@@ -367,36 +404,43 @@ OBSCURA_HOST_DEVICE std::uint64_t march_lattice_ray(const LatticeView& lattice,
           any_cut = any_cut || pieces[j] > 1;
         }
         if (!any_cut) {
-          add_cell(t1 - t0, n, sigma_t, emissivity, radiance, transmittance);
+          add(t1 - t0, n, sigma_t, forward, emissivity, 0);
           return;
         }
         for (int j = 0; j < n; ++j) {
           const double* st[3] = {sigma_t[0] + j, sigma_t[1] + j, sigma_t[2] + j};
+          const double* fw[3] = {forward[0] + j, forward[1] + j, forward[2] + j};
           const double* em[3] = {emissivity[0] + j, emissivity[1] + j, emissivity[2] + j};
           if (pieces[j] == 1) {
-            add_cell(t1 - t0, 1, st, em, radiance + j, transmittance + j);
+            add(t1 - t0, 1, st, fw, em, j);
             continue;
           }
           // Equal pieces, each from its entry (the last one's
           // exit), middle and exit, for this node alone; the
           // cell's own three points stay for the next cell.
-          double sub_st[3], sub_em[3];
+          double sub_st[3], sub_em[3], sub_fw[3] = {};
           sub_st[2] = sigma_t[0][j];
           sub_em[2] = emissivity[0][j];
+          if constexpr (kForward) sub_fw[2] = forward[0][j];
           const double step = (t1 - t0) / pieces[j];
           for (int k = 0; k < pieces[j]; ++k) {
             const double a = t0 + k * step, b = k + 1 == pieces[j] ? t1 : a + step;
             sub_st[0] = sub_st[2];
             sub_em[0] = sub_em[2];
+            sub_fw[0] = sub_fw[2];
             for (int p = 1; p < 3; ++p) {
               d::cell_fractions(o3, d3, p == 1 ? 0.5 * (a + b) : b, cell, frac);
               const d::RecordInterpolation<Stride> interpolate_piece(frac);
               interpolate_piece(records[j], slot, values);
-              source.point(j, values, sub_st[p], sub_em[p]);
+              if constexpr (kForward)
+                source.point(j, values, sub_st[p], sub_em[p], sub_fw[p]);
+              else
+                source.point(j, values, sub_st[p], sub_em[p]);
             }
             const double* pst[3] = {sub_st, sub_st + 1, sub_st + 2};
+            const double* pfw[3] = {sub_fw, sub_fw + 1, sub_fw + 2};
             const double* pem[3] = {sub_em, sub_em + 1, sub_em + 2};
-            add_cell(b - a, 1, pst, pem, radiance + j, transmittance + j);
+            add(b - a, 1, pst, pfw, pem, j);
           }
         }
       });
@@ -409,10 +453,11 @@ OBSCURA_HOST_DEVICE std::uint64_t march_lattice_view(const LatticeView& lattice,
                                                      const float* const* records, int nodes,
                                                      const Ray& ray, double t_max,
                                                      const Source& source, double* radiance,
-                                                     double* transmittance) {
+                                                     double* transmittance,
+                                                     double* attenuation = nullptr) {
   const Ray lray{lattice.to_lattice(ray.origin), lattice.to_lattice_direction(ray.direction)};
   return march_lattice_ray<Stride, MaxNodes>(lattice, records, nodes, lray, t_max, source, radiance,
-                                             transmittance);
+                                             transmittance, attenuation);
 }
 
 // The optical depth ∫ σt along the lattice ray over [0, t_max] (σt = σa + σs

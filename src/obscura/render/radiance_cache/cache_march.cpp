@@ -40,9 +40,9 @@ class RayLight {
 template <int Stride>
 std::uint64_t march_records(const LatticeVolume& volume, const int* record, int nodes,
                             const CameraRay& camera, const CacheSource& source, double* radiance,
-                            double* transmittance) {
+                            double* transmittance, double* attenuation) {
   return march_lattice<Stride>(volume, record, nodes, camera.ray, camera.t_end(), source, radiance,
-                               transmittance);
+                               transmittance, attenuation);
 }
 
 // σs J from the cache at a point of the medium's march (emission_marcher.h's
@@ -76,6 +76,9 @@ class CacheInScattering {
     }
   }
 
+  // Delta-M's f at a point of asymmetry g (CacheLight::forward_fraction).
+  double forward_fraction(double g) const { return light_.forward_fraction(cache_clamped_g(g)); }
+
   void add(const MarchCell&, int, double t, const double* sigma_s, const double* g,
            double* emissivity) {
     bool scatters = false;
@@ -95,8 +98,9 @@ class CacheInScattering {
         const float* r = records + slot[c] * static_cast<std::size_t>(stride);
         for (int i = record::kTauSun; i < count; ++i) v[i] += static_cast<float>(w[c] * r[i]);
       }
-      emissivity[j] +=
-          sigma_s[j] * light_.in_scattered(j, cache_clamped_g(g[j]), v.data() + record::kTauSun);
+      const double gj = cache_clamped_g(g[j]);
+      emissivity[j] += sigma_s[j] * light_.in_scattered(j, gj, light_.forward_fraction(gj),
+                                                        v.data() + record::kTauSun);
     }
   }
 
@@ -114,7 +118,7 @@ class CacheInScattering {
 std::uint64_t march_cache_lattice(const Scene& scene, const RadianceCache& cache,
                                   const CameraRay& camera, const SpectralNodes& nodes,
                                   const int* record, int peak_channel, double* radiance,
-                                  double* transmittance) {
+                                  double* transmittance, double* attenuation) {
   const RayLight light(scene, cache, camera.ray, nodes, peak_channel);
   const CacheSource source{light.planck(), light.light()};
   const int n = static_cast<int>(nodes.size());
@@ -122,27 +126,28 @@ std::uint64_t march_cache_lattice(const Scene& scene, const RadianceCache& cache
   switch (volume.stride()) {
     case record::light_stride(1):
       return march_records<record::light_stride(1)>(volume, record, n, camera, source, radiance,
-                                                    transmittance);
+                                                    transmittance, attenuation);
     case record::light_stride(4):
       return march_records<record::light_stride(4)>(volume, record, n, camera, source, radiance,
-                                                    transmittance);
+                                                    transmittance, attenuation);
     case record::light_stride(9):
       return march_records<record::light_stride(9)>(volume, record, n, camera, source, radiance,
-                                                    transmittance);
+                                                    transmittance, attenuation);
     default:
       OBSCURA_CHECK(volume.stride() == record::light_stride(kMaxShCoefficients));
       return march_records<record::light_stride(kMaxShCoefficients)>(
-          volume, record, n, camera, source, radiance, transmittance);
+          volume, record, n, camera, source, radiance, transmittance, attenuation);
   }
 }
 
 std::uint64_t march_cache_medium(const Scene& scene, const RadianceCache& cache,
                                  const CameraRay& camera, const SpectralNodes& nodes,
-                                 const int* record, double* radiance, double* transmittance) {
+                                 const int* record, double* radiance, double* transmittance,
+                                 double* attenuation) {
   const RayLight light(scene, cache, camera.ray, nodes);
   CacheInScattering in(*scene.medium, cache, light.light(), camera.ray, record,
                        static_cast<int>(nodes.size()));
-  EmissionMarcher<CacheInScattering> marcher(nodes, in, radiance, transmittance);
+  EmissionMarcher<CacheInScattering> marcher(nodes, in, radiance, transmittance, attenuation);
   MarchOptions march;
   march.with_g = true;
   // Medium cells longer than a lattice spacing (a box's) are cut, so the

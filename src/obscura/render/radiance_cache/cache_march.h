@@ -10,10 +10,13 @@
 //    (RadianceCache::volume().has_medium(); render/lattice/lattice_march.h);
 //  * march_cache_medium: over the medium's own cells (Medium::march_cells,
 //    any medium), reading the light from the records at each point.
-// Both add to radiance[j] and multiply transmittance[j] for the nodes of one
-// band, whose records are cache.volume().records(record[j]), and return the
-// cells visited. `peak_channel`: the ray's sensor's forward peak
-// (RadianceCache::peak_channel; only the lattice's records hold one).
+// Both add to radiance[j] and multiply transmittance[j] (the line's exact
+// e^{−τ}) and attenuation[j] (what the radiance behind the medium is seen
+// through: e^{−∫(σt − f σs)} with delta-M, cache_source.h, else the same as
+// transmittance) for the nodes of one band, whose records are
+// cache.volume().records(record[j]), and return the cells visited.
+// `peak_channel`: the ray's sensor's forward peak (RadianceCache::peak_channel;
+// only the lattice's records hold one); a ray without one takes delta-M.
 #include <cstdint>
 
 #include "obscura/render/integrator.h"
@@ -24,10 +27,11 @@ namespace obscura {
 std::uint64_t march_cache_lattice(const Scene& scene, const RadianceCache& cache,
                                   const CameraRay& camera, const SpectralNodes& nodes,
                                   const int* record, int peak_channel, double* radiance,
-                                  double* transmittance);
+                                  double* transmittance, double* attenuation);
 
 std::uint64_t march_cache_medium(const Scene& scene, const RadianceCache& cache,
                                  const CameraRay& camera, const SpectralNodes& nodes,
-                                 const int* record, double* radiance, double* transmittance);
+                                 const int* record, double* radiance, double* transmittance,
+                                 double* attenuation);
 
 }  // namespace obscura

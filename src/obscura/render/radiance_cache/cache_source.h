@@ -5,7 +5,13 @@
 //   J(x, ω) = E_sun p_HG(ω_sun·ω) V_sun e^{−τ_sun(x)} + Σ_l g^l Σ_m Y_lm(ω) c_lm(x)
 //             [+ J_peak(x): the phase function beyond the harmonics, towards
 //               the ray's sensor, where the cache holds it]
-// from the record's light channels, g = (σs g)/σs. Plain data, so that a
+// from the record's light channels, g = (σs g)/σs. A ray with no such peak
+// takes delta-M instead (Wiscombe 1977; docs/physics.md): the phase
+// function's moments beyond degree L as those of a forward peak f δ, f =
+// g^{L+1}, which keeps f σs L(x, ω) in the ray's own direction. The
+// harmonics are then weighted g^l − f, and the radiance's extinction along
+// the ray is σt − f σs (the march's `forward`, lattice_view_march.h), while
+// the transmittance stays exact. Plain data, so that a
 // CUDA device runs it too (docs/gpu.md); the CPU's march over the medium's
 // cells (cache_march.cpp) reads the same CacheLight.
 #include <algorithm>
@@ -70,7 +76,8 @@ OBSCURA_HOST_DEVICE inline double hg_beyond_degree(double g, double mu, int degr
 // What every point of one camera ray shares: the harmonics of the direction
 // the light travels (towards the camera), the sun's cosine with it, the
 // sun's irradiance at each node of the march, and which light channel holds
-// the forward peak beyond the harmonics towards this ray's sensor.
+// the forward peak beyond the harmonics towards this ray's sensor (none:
+// delta-M).
 struct CacheLight {
   std::array<double, kMaxShCoefficients> y{};
   double mu_sun = 0.0;
@@ -95,12 +102,23 @@ struct CacheLight {
 #endif
   }
 
+  // Delta-M's f = g^{L+1} at a point of asymmetry g, where the ray has no
+  // forward peak and g > 0 (0 otherwise: a backward or isotropic phase
+  // function has no forward peak to keep).
+  OBSCURA_HOST_DEVICE double forward_fraction(double g) const {
+    if (peak >= 0 || !(g > 0.0)) return 0.0;
+    double f = g;
+    for (int l = 0; l < sh_degree; ++l) f *= g;
+    return f;
+  }
+
   // J at node j from the point's g and light channels (`light` from
   // record::kTauSun on, interpolated; on the CPU readable up to
-  // HgConvolution::readable(sh_degree) harmonics). Not clamped at zero: the photon
+  // HgConvolution::readable(sh_degree) harmonics), the harmonics weighted
+  // g^l − f (f from forward_fraction). Not clamped at zero: the photon
   // estimate is linear in the photons, so its noise (which can make a
   // truncated expansion dip below zero) averages out along the ray.
-  OBSCURA_HOST_DEVICE double in_scattered(int j, double g, const float* light) const {
+  OBSCURA_HOST_DEVICE double in_scattered(int j, double g, double f, const float* light) const {
     static_assert(record::kSunVisibility == record::kTauSun + 1 &&
                   record::kSh == record::kTauSun + 2);
     const double tau = light[0], visibility = light[1];
@@ -108,9 +126,9 @@ struct CacheLight {
     if (visibility > 0.0)
       j_in += sun_irradiance[j] * cache_hg(g, mu_sun) * visibility * fast_exp(-tau);
 #if OBSCURA_DEVICE_CODE
-    j_in += hg_convolved(light + 2, y, g, sh_degree);
+    j_in += hg_convolved(light + 2, y, g, sh_degree, f);
 #else
-    j_in += convolution(light + 2, g);
+    j_in += convolution(light + 2, g, f);
 #endif
     return peak >= 0 ? j_in + light[peak] : j_in;
   }
@@ -122,14 +140,21 @@ struct CacheSource {
   // The sun's optical depth: where it changes steeply across a cell, the
   // march cuts the cell into pieces (lattice_view_march.h).
   static constexpr int kSteepChannel = record::kTauSun;
+  // Delta-M's f σs, where the ray has no forward peak.
+  static constexpr bool kKeepsForward = true;
 
-  OBSCURA_HOST_DEVICE void point(int j, const float* v, double& sigma_t, double& emissivity) const {
+  OBSCURA_HOST_DEVICE void point(int j, const float* v, double& sigma_t, double& emissivity,
+                                 double& forward) const {
     const double sigma_a = v[record::kSigmaA], sigma_s = v[record::kSigmaS];
     sigma_t = sigma_a + sigma_s;
     emissivity = sigma_a != 0.0 ? sigma_a * planck[j](v[record::kTemperature]) : 0.0;
-    if (sigma_s > 0.0)
-      emissivity += sigma_s * light.in_scattered(j, cache_clamped_g(v[record::kSigmaSG] / sigma_s),
-                                                 v + record::kTauSun);
+    forward = 0.0;
+    if (sigma_s > 0.0) {
+      const double g = cache_clamped_g(v[record::kSigmaSG] / sigma_s);
+      const double f = light.forward_fraction(g);
+      forward = f * sigma_s;
+      emissivity += sigma_s * light.in_scattered(j, g, f, v + record::kTauSun);
+    }
   }
 };
 

@@ -44,17 +44,22 @@ void RadianceCacheIntegrator::band_radiance(const CameraRay& camera, int sensor,
                                             double* transmittance) const {
   const SpectralNodes& nodes = spectra_[sensor][band];
   const int n = static_cast<int>(nodes.size());
+  // What the background is seen through: the transmittance, or more with
+  // delta-M (cache_march.h).
+  std::array<double, kMaxSpectralNodes> attenuation;
   for (int j = 0; j < n; ++j) {
     radiance[j] = 0.0;
     transmittance[j] = 1.0;
+    attenuation[j] = 1.0;
   }
   if (cache_) {
     const int* record = distinct_.index[sensor][band].data();
-    workspace.segments +=
-        cache_->volume().has_medium()
-            ? march_cache_lattice(scene_, *cache_, camera, nodes, record,
-                                  cache_->peak_channel(sensor), radiance, transmittance)
-            : march_cache_medium(scene_, *cache_, camera, nodes, record, radiance, transmittance);
+    workspace.segments += cache_->volume().has_medium()
+                              ? march_cache_lattice(scene_, *cache_, camera, nodes, record,
+                                                    cache_->peak_channel(sensor), radiance,
+                                                    transmittance, attenuation.data())
+                              : march_cache_medium(scene_, *cache_, camera, nodes, record, radiance,
+                                                   transmittance, attenuation.data());
   }
   std::array<double, kMaxSpectralNodes> behind;
   auto& ws = static_cast<Workspace&>(workspace);
@@ -64,7 +69,7 @@ void RadianceCacheIntegrator::band_radiance(const CameraRay& camera, int sensor,
   if (cache_)
     add_ground_light(scene_, *cache_, camera, nodes, distinct_.index[sensor][band].data(),
                      behind.data());
-  for (int j = 0; j < n; ++j) radiance[j] += transmittance[j] * behind[j];
+  for (int j = 0; j < n; ++j) radiance[j] += attenuation[j] * behind[j];
 }
 
 }  // namespace obscura

@@ -58,15 +58,18 @@ OBSCURA_HOST_DEVICE inline void spherical_harmonics(const Vec3& d,
 }
 
 // ∫ p_HG(ω'·ω) L(ω') dω' from L's coefficients `c` (degree ≤ `degree`) and
-// the harmonics `y` of ω: Σ_l g^l Σ_m y_lm c_lm.
+// the harmonics `y` of ω: Σ_l (g^l − f) Σ_m y_lm c_lm, f = 0 for the phase
+// function itself; f = g^{degree+1} gives delta-M's (Wiscombe 1977) for the
+// part of the phase function the harmonics hold, its forward peak f δ
+// taken by the march (cache_source.h).
 OBSCURA_HOST_DEVICE inline double hg_convolved(const float* c,
                                                const std::array<double, kMaxShCoefficients>& y,
-                                               double g, int degree) {
+                                               double g, int degree, double f = 0.0) {
   double result = 0.0, g_l = 1.0;
   for (int l = 0; l <= degree; ++l) {
     double band = 0.0;
     for (int i = l * l; i < (l + 1) * (l + 1); ++i) band += y[i] * c[i];
-    result += g_l * band;
+    result += (g_l - f) * band;
     g_l *= g;
   }
   return result;
@@ -94,11 +97,13 @@ class HgConvolution {
   // so finite values there add nothing).
   static constexpr int readable(int degree) { return (sh_coefficient_count(degree) + 3) / 4 * 4; }
 
-  double operator()(const float* c, double g) const {
+  // With f: Σ_i (g^{l(i)} − f) y_i c_i (hg_convolved's f).
+  double operator()(const float* c, double g, double f = 0.0) const {
     using Float4 = float __attribute__((vector_size(16)));
     const float g1 = static_cast<float>(g), g2 = g1 * g1, g3 = g2 * g1;
-    const Float4 power[4] = {
-        {1.0f, g1, g1, g1}, {g2, g2, g2, g2}, {g2, g3, g3, g3}, {g3, g3, g3, g3}};
+    const float f1 = static_cast<float>(f);
+    const Float4 power[4] = {Float4{1.0f, g1, g1, g1} - f1, Float4{g2, g2, g2, g2} - f1,
+                             Float4{g2, g3, g3, g3} - f1, Float4{g3, g3, g3, g3} - f1};
     Float4 sum = {};
     for (int q = 0; q < groups_; ++q) {
       Float4 y_q, c_q;
