@@ -191,6 +191,23 @@ TEST(SlabValidation, RadianceCacheDisortGridWithAPeakedPhaseFunction) {
   EXPECT_EQ(compared, kRows);
 }
 
+// `obscura validate slab` judges the radiance cache on the tables at its 2 %
+// target, as the photon map, and the path tracer at the case's 1 %.
+TEST(SlabValidation, TheRadianceCacheIsJudgedOnTheTablesAtTwoPercent) {
+  const SlabSpec slab{0.9, 1.0, 0.5, SlabIncidence::kCollimated, 1.0};
+  const auto ref = find_slab_reference(kTable, slab);
+  ASSERT_TRUE(ref);
+  ValidationOptions cache = for_method(RenderMethod::kRadianceCache);
+  cache.settings.radiance_cache.photons_per_node = 20000;
+  cache.samples = 20000;
+  ValidationOptions path = for_method(RenderMethod::kPathTracer);
+  path.samples = 20000;
+  for (const char* q : {"R", "T"}) {
+    EXPECT_EQ(quantity(validate_slab(slab, ref, cache), q).tolerance, 0.02) << q;
+    EXPECT_EQ(quantity(validate_slab(slab, ref, path), q).tolerance, 0.01) << q;
+  }
+}
+
 TEST(SlabValidation, UnscatteredTransmittanceHasItsClosedForm) {
   // T_direct is judged against e^{−τ/μ0} or 2 E3(τ) even with no table row.
   const auto normal =

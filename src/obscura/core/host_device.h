@@ -21,3 +21,14 @@
 // the lattice march's cell walk and its callbacks, whose state must stay in
 // registers (a call left in place cost the CPU march 12 %, measured).
 #define OBSCURA_ALWAYS_INLINE __attribute__((always_inline))
+
+// Every call in the function inlined, recursively (GCC and Clang; nvcc
+// inlines a device function's calls anyway): for the CPU's lattice march,
+// whose inlining the heuristics otherwise decide by the size of the whole
+// program, so that adding code elsewhere can leave its small callees as
+// calls (docs/performance.md).
+#if defined(__CUDACC__)
+#define OBSCURA_FLATTEN
+#else
+#define OBSCURA_FLATTEN __attribute__((flatten))
+#endif

@@ -111,9 +111,16 @@ OBSCURA_HOST_DEVICE void march_item(const MarchJob& job, std::uint64_t item) {
     static_assert(kDegree >= 0, "no light records are this long");
     const CacheLight light(r.direction, job.sun != 0, job.to_sun, job.sun_irradiance + u, kDegree,
                            job.peak_channel);
-    const CacheSource source{job.planck + u, light};
-    cells = march_lattice_view<Stride, 1>(job.lattice, &records, 1, ray, r.t_end, source, &radiance,
-                                          &transmittance, &attenuation);
+    if (job.peak_channel >= 0) {  // the whole phase function: no delta-M (cache_source.h)
+      const CacheSource source{job.planck + u, light};
+      cells = march_lattice_view<Stride, 1>(job.lattice, &records, 1, ray, r.t_end, source,
+                                            &radiance, &transmittance);
+      attenuation = transmittance;
+    } else {
+      const DeltaMCacheSource source{job.planck + u, light};
+      cells = march_lattice_view<Stride, 1>(job.lattice, &records, 1, ray, r.t_end, source,
+                                            &radiance, &transmittance, &attenuation);
+    }
   }
   job.radiance[item] = radiance;
   job.transmittance[item] = transmittance;

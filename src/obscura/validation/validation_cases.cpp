@@ -466,12 +466,17 @@ std::vector<ValidationRow> validate_slab(const SlabSpec& slab,
   };
 
   const double tol = solver.tolerance(0.01);
+  // The radiance cache is judged on the slab tables at 2 %, its target
+  // there (docs/validation.md), as the photon map is; its rays are sampled
+  // to the case's own 1 %.
+  const double judged_tol =
+      options.settings.method == RenderMethod::kRadianceCache ? std::max(tol, 0.02) : tol;
   auto run = [&](const char* quantity, std::uint64_t stream, auto&& sample, double reference,
                  bool judged) {
     const MeanEstimate e = judged ? estimate(o, target(tol, reference), stream, sample)
                                   : estimate(o, 1e-5, stream, sample, 0.5 * tol);
     ValidationRow r =
-        judged ? row("", quantity, reference, e, tol)
+        judged ? row("", quantity, reference, e, judged_tol)
                : ValidationRow{"", quantity, 0.0, e.mean, e.stderr_mean, tol, true, e.samples};
     r.judged = judged;
     return r;

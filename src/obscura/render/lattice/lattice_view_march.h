@@ -310,12 +310,10 @@ OBSCURA_ALWAYS_INLINE OBSCURA_HOST_DEVICE inline void for_each_cell(const Lattic
 // (Source::kKeepsForward) also multiplies attenuation[j] by the e^{−∫(σt − φ)}
 // the radiance was seen through. Returns the cells visited.
 template <int Stride, int MaxNodes, class Source>
-OBSCURA_HOST_DEVICE std::uint64_t march_lattice_ray(const LatticeView& lattice,
-                                                    const float* const* records, int nodes,
-                                                    const Ray& lray, double t_max,
-                                                    const Source& source, double* radiance,
-                                                    double* transmittance,
-                                                    double* attenuation = nullptr) {
+OBSCURA_FLATTEN OBSCURA_HOST_DEVICE std::uint64_t march_lattice_ray(
+    const LatticeView& lattice, const float* const* records, int nodes, const Ray& lray,
+    double t_max, const Source& source, double* radiance, double* transmittance,
+    double* attenuation = nullptr) {
   namespace d = lattice_march_detail;
   double t_begin = 0.0, t_end = t_max;
   if (!lattice.domain.intersect(lray, t_begin, t_end) || !(t_end > t_begin)) return 0;

@@ -37,12 +37,26 @@ class RayLight {
   CacheLight light_;
 };
 
-template <int Stride>
+// The lattice march over the volume's records of its stride.
+template <class Source>
 std::uint64_t march_records(const LatticeVolume& volume, const int* record, int nodes,
-                            const CameraRay& camera, const CacheSource& source, double* radiance,
+                            const CameraRay& camera, const Source& source, double* radiance,
                             double* transmittance, double* attenuation) {
-  return march_lattice<Stride>(volume, record, nodes, camera.ray, camera.t_end(), source, radiance,
-                               transmittance, attenuation);
+  auto march = [&]<int Stride>() {
+    return march_lattice<Stride>(volume, record, nodes, camera.ray, camera.t_end(), source,
+                                 radiance, transmittance, attenuation);
+  };
+  switch (volume.stride()) {
+    case record::light_stride(1):
+      return march.template operator()<record::light_stride(1)>();
+    case record::light_stride(4):
+      return march.template operator()<record::light_stride(4)>();
+    case record::light_stride(9):
+      return march.template operator()<record::light_stride(9)>();
+    default:
+      OBSCURA_CHECK(volume.stride() == record::light_stride(kMaxShCoefficients));
+      return march.template operator()<record::light_stride(kMaxShCoefficients)>();
+  }
 }
 
 // σs J from the cache at a point of the medium's march (emission_marcher.h's
@@ -120,24 +134,18 @@ std::uint64_t march_cache_lattice(const Scene& scene, const RadianceCache& cache
                                   const int* record, int peak_channel, double* radiance,
                                   double* transmittance, double* attenuation) {
   const RayLight light(scene, cache, camera.ray, nodes, peak_channel);
-  const CacheSource source{light.planck(), light.light()};
   const int n = static_cast<int>(nodes.size());
-  const LatticeVolume& volume = cache.volume();
-  switch (volume.stride()) {
-    case record::light_stride(1):
-      return march_records<record::light_stride(1)>(volume, record, n, camera, source, radiance,
-                                                    transmittance, attenuation);
-    case record::light_stride(4):
-      return march_records<record::light_stride(4)>(volume, record, n, camera, source, radiance,
-                                                    transmittance, attenuation);
-    case record::light_stride(9):
-      return march_records<record::light_stride(9)>(volume, record, n, camera, source, radiance,
-                                                    transmittance, attenuation);
-    default:
-      OBSCURA_CHECK(volume.stride() == record::light_stride(kMaxShCoefficients));
-      return march_records<record::light_stride(kMaxShCoefficients)>(
-          volume, record, n, camera, source, radiance, transmittance, attenuation);
-  }
+  if (peak_channel < 0)
+    return march_records(cache.volume(), record, n, camera,
+                         DeltaMCacheSource{light.planck(), light.light()}, radiance, transmittance,
+                         attenuation);
+  // The harmonics and the peak hold the whole phase function: the
+  // background is seen through the transmittance.
+  const std::uint64_t cells =
+      march_records(cache.volume(), record, n, camera, CacheSource{light.planck(), light.light()},
+                    radiance, transmittance, nullptr);
+  for (int j = 0; j < n; ++j) attenuation[j] = transmittance[j];
+  return cells;
 }
 
 std::uint64_t march_cache_medium(const Scene& scene, const RadianceCache& cache,

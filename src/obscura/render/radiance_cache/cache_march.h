@@ -10,11 +10,12 @@
 //    (RadianceCache::volume().has_medium(); render/lattice/lattice_march.h);
 //  * march_cache_medium: over the medium's own cells (Medium::march_cells,
 //    any medium), reading the light from the records at each point.
-// Both add to radiance[j] and multiply transmittance[j] (the line's exact
-// e^{−τ}) and attenuation[j] (what the radiance behind the medium is seen
-// through: e^{−∫(σt − f σs)} with delta-M, cache_source.h, else the same as
-// transmittance) for the nodes of one band, whose records are
-// cache.volume().records(record[j]), and return the cells visited.
+// Both take radiance[j] from 0, transmittance[j] and attenuation[j] from 1 to
+// the ray's radiance, the line's exact e^{−τ} and what the radiance behind
+// the medium is seen through (e^{−∫(σt − f σs)} with delta-M,
+// cache_source.h, else the transmittance) for the nodes of one band, whose
+// records are cache.volume().records(record[j]), and return the cells
+// visited.
 // `peak_channel`: the ray's sensor's forward peak (RadianceCache::peak_channel;
 // only the lattice's records hold one); a ray without one takes delta-M.
 #include <cstdint>

@@ -118,7 +118,8 @@ struct CacheLight {
   // g^l − f (f from forward_fraction). Not clamped at zero: the photon
   // estimate is linear in the photons, so its noise (which can make a
   // truncated expansion dip below zero) averages out along the ray.
-  OBSCURA_HOST_DEVICE double in_scattered(int j, double g, double f, const float* light) const {
+  OBSCURA_ALWAYS_INLINE OBSCURA_HOST_DEVICE double in_scattered(int j, double g, double f,
+                                                                const float* light) const {
     static_assert(record::kSunVisibility == record::kTauSun + 1 &&
                   record::kSh == record::kTauSun + 2);
     const double tau = light[0], visibility = light[1];
@@ -134,28 +135,51 @@ struct CacheLight {
   }
 };
 
-struct CacheSource {
+// The march's source for a ray with a forward peak (DeltaM false: the
+// harmonics and the peak hold the whole phase function, the radiance's
+// extinction is σt) or without one (DeltaM true: delta-M, which also gives
+// the march the f σs it keeps along the ray). Two types rather than a test
+// per point, so that a ray with a peak (the demo's) marches as before
+// delta-M, without carrying a forward part that is zero.
+template <bool DeltaM>
+struct CacheSourceOf {
   const PlanckTableView* planck;  // per node j of the march
   const CacheLight& light;
   // The sun's optical depth: where it changes steeply across a cell, the
   // march cuts the cell into pieces (lattice_view_march.h).
   static constexpr int kSteepChannel = record::kTauSun;
-  // Delta-M's f σs, where the ray has no forward peak.
-  static constexpr bool kKeepsForward = true;
+  static constexpr bool kKeepsForward = DeltaM;
 
+  // Delta-M: σt, ε and the f σs kept along the ray.
   OBSCURA_HOST_DEVICE void point(int j, const float* v, double& sigma_t, double& emissivity,
-                                 double& forward) const {
+                                 double& forward) const requires DeltaM {
+    evaluate(j, v, sigma_t, emissivity, forward);
+  }
+  // With a forward peak: σt and ε.
+  OBSCURA_HOST_DEVICE void point(int j, const float* v, double& sigma_t, double& emissivity) const
+      requires(!DeltaM) {
+    double forward;
+    evaluate(j, v, sigma_t, emissivity, forward);
+  }
+
+ private:
+  OBSCURA_ALWAYS_INLINE OBSCURA_HOST_DEVICE void evaluate(int j, const float* v, double& sigma_t,
+                                                          double& emissivity,
+                                                          double& forward) const {
     const double sigma_a = v[record::kSigmaA], sigma_s = v[record::kSigmaS];
     sigma_t = sigma_a + sigma_s;
     emissivity = sigma_a != 0.0 ? sigma_a * planck[j](v[record::kTemperature]) : 0.0;
     forward = 0.0;
     if (sigma_s > 0.0) {
       const double g = cache_clamped_g(v[record::kSigmaSG] / sigma_s);
-      const double f = light.forward_fraction(g);
+      const double f = DeltaM ? light.forward_fraction(g) : 0.0;
       forward = f * sigma_s;
       emissivity += sigma_s * light.in_scattered(j, g, f, v + record::kTauSun);
     }
   }
 };
+
+using CacheSource = CacheSourceOf<false>;
+using DeltaMCacheSource = CacheSourceOf<true>;
 
 }  // namespace obscura
