@@ -116,27 +116,36 @@ TEST(MarchJob, CacheItemsEqualTheCpuMarchBitForBitAtEveryDegree) {
     request.sh_degree = degree;
     request.sun = true;
     request.to_sun = scene.sun.direction();
-    request.peak_channel = cache.peak_channel(0);
     request.output_node = {0, 1, 2};
     const std::vector<CameraRay> rays = rays_around(scene.medium->bounds(), 200, 5 + degree);
-    MarchResult result;
-    executor.march(request, march_rays(rays), result);
-    const int record[3] = {0, 1, 2};
-    int lit = 0;
-    for (std::size_t i = 0; i < rays.size(); ++i) {
-      double l[3] = {0, 0, 0}, t[3] = {1, 1, 1}, a[3] = {1, 1, 1};
-      const std::uint64_t cells =
-          march_cache_lattice(scene, cache, rays[i], band, record, cache.peak_channel(0), l, t, a);
-      lit += l[0] > 0;
-      for (std::size_t j = 0; j < 3; ++j) {
-        ASSERT_EQ(result.radiance[j * rays.size() + i], l[j])
-            << "degree " << degree << " ray " << i;
-        ASSERT_EQ(result.transmittance[j * rays.size() + i], t[j]);
-        ASSERT_EQ(result.attenuation[j * rays.size() + i], a[j]);
-        ASSERT_EQ(result.cells[j * rays.size() + i], cells);
+    // With the narrow sensor's peak, and without one (delta-M: the
+    // attenuation then differs from the transmittance).
+    for (const int peak : {cache.peak_channel(0), -1}) {
+      request.peak_channel = peak;
+      MarchResult result;
+      executor.march(request, march_rays(rays), result);
+      const int record[3] = {0, 1, 2};
+      int lit = 0, forward = 0;
+      for (std::size_t i = 0; i < rays.size(); ++i) {
+        double l[3] = {0, 0, 0}, t[3] = {1, 1, 1}, a[3] = {1, 1, 1};
+        const std::uint64_t cells =
+            march_cache_lattice(scene, cache, rays[i], band, record, peak, l, t, a);
+        lit += l[0] > 0;
+        forward += a[0] != t[0];
+        for (std::size_t j = 0; j < 3; ++j) {
+          ASSERT_EQ(result.radiance[j * rays.size() + i], l[j])
+              << "degree " << degree << " peak " << peak << " ray " << i;
+          ASSERT_EQ(result.transmittance[j * rays.size() + i], t[j]);
+          ASSERT_EQ(result.attenuation[j * rays.size() + i], a[j]);
+          ASSERT_EQ(result.cells[j * rays.size() + i], cells);
+        }
       }
+      EXPECT_GT(lit, 60) << "degree " << degree << " peak " << peak;
+      if (peak >= 0)
+        EXPECT_EQ(forward, 0) << "degree " << degree;
+      else
+        EXPECT_GT(forward, 60) << "degree " << degree;
     }
-    EXPECT_GT(lit, 60) << "degree " << degree;
   }
 }
 
