@@ -16,6 +16,7 @@
 #include "obscura/core/memory_limit.h"
 #include "obscura/core/parallel.h"
 #include "obscura/core/shared_ranges.h"
+#include "obscura/render/lattice/parallel_depths.h"
 #include "obscura/render/photon_map/photon_tracing.h"
 #include "obscura/render/radiance_cache/estimates_at_nodes.h"
 #include "obscura/render/radiance_cache/flight_splat.h"
@@ -214,10 +215,28 @@ void RadianceCache::choose_light_cells(const Scene& scene, std::size_t nodes,
 
 void RadianceCache::compute_sun(const Scene& scene, const std::vector<SpectralNode>& nodes) {
   if (!has_sun_) return;
-  const std::size_t per_slot = static_cast<std::size_t>(spectral_count_) + 1;
-  // τ_sun per medium sample, then the visibility, per slot.
+  // Where the records hold the grid's own medium (the lattice at the
+  // cloud's voxel size), τ_sun is marched over them per spectral node, the
+  // nodes inside the medium's box sharing one walk (parallel_depths.h): the
+  // same trilinear σt and Simpson's rule as the medium's own march
+  // (GridMedium::add_optical_depth), up to the records' float rounding, at
+  // a fraction of its cost (docs/performance.md, "The sun's depths").
+  // Otherwise the medium is marched per medium sample from each node and τ
+  // interpolated in wavelength; so too where the lattice holds less than a
+  // quarter of its box's blocks, as the shared walk lays σt out over the
+  // whole box (a quarter of the records' memory at most).
+  const double box_nodes =
+      static_cast<double>(lattice_.dims()[0]) * lattice_.dims()[1] * lattice_.dims()[2];
+  const bool by_records = sun_depths_ == SunDepths::kHere && volume_.has_medium() &&
+                          box_nodes <= 4.0 * static_cast<double>(lattice_.slot_count());
+  OBSCURA_CHECK(!by_records || volume_.node_count() == static_cast<int>(nodes.size()));
+  const std::size_t depths = by_records ? nodes.size() : static_cast<std::size_t>(spectral_count_);
+  const std::size_t per_slot = depths + 1;
+  // τ_sun per medium sample (or spectral node), then the visibility, per slot.
   std::vector<float> sun(lattice_.slot_count() * per_slot, 0.0f);
   const Vec3 to_sun = scene.sun.direction();
+  const LatticeView view = volume_.view();
+  const Vec3 to_sun_lattice = lattice_.to_lattice_direction(to_sun);
   // Nodes of the cells in sun_cells_ (a node serves the cells on both sides).
   const auto in_sun_cells = [&](std::size_t slot) {
     const std::array<int, 3> n = lattice_.slot_node(slot);
@@ -229,53 +248,87 @@ void RadianceCache::compute_sun(const Scene& scene, const std::vector<SpectralNo
   // then on or just under it (the ground beneath a cloud's lowest nodes),
   // and its values serve the cells above.
   const double near_m = std::sqrt(3.0) * lattice_.spacing_m();
-  // τ_sun per medium sample from lattice point `at`, added to `tau`.
+  // τ_sun from lattice point `at`, added to `tau`, through the medium.
   const auto add_depth_from = [&](const Vec3& at, double* tau) {
     const Ray from{lattice_.origin() + lattice_.rotation() * (at * lattice_.spacing_m()), to_sun};
     scene.medium->add_optical_depth(from, 0.0, std::numeric_limits<double>::infinity(), tau);
   };
-  for_blocks_shared(
-      *processes_, lattice_.block_count(), scene.settings.threads, sun,
-      per_slot * NodeLattice::kBlockNodes, [&](std::size_t block) {
-        std::vector<double> tau(static_cast<std::size_t>(spectral_count_)), inner(tau.size());
-        for (std::size_t slot = block * NodeLattice::kBlockNodes;
-             slot < (block + 1) * NodeLattice::kBlockNodes; ++slot) {
-          if (!lattice_.slot_inside(slot) || !in_sun_cells(slot)) continue;
-          const Ray ray{lattice_.slot_position(slot), to_sun};
-          SurfaceHit hit;
-          const bool shaded = intersect_surfaces(scene.surfaces, ray, near_m,
-                                                 std::numeric_limits<double>::infinity(), hit);
-          std::fill(tau.begin(), tau.end(), 0.0);
-          if (sun_depths_ == SunDepths::kHere) {
-            const Vec3 node = lattice_.to_lattice(ray.origin);
-            Vec3 face;
-            if (volume_.has_medium() && rim_face(volume_.domain(), node, face)) {
-              // 2 τ(face) − τ(inner neighbour) (lattice_view.h).
-              std::fill(inner.begin(), inner.end(), 0.0);
-              add_depth_from(face, tau.data());
-              add_depth_from(face * 2.0 - node, inner.data());
-              for (std::size_t k = 0; k < tau.size(); ++k) tau[k] = 2.0 * tau[k] - inner[k];
-            } else {
-              scene.medium->add_optical_depth(ray, 0.0, std::numeric_limits<double>::infinity(),
-                                              tau.data());
-            }
-          }
-          float* out = sun.data() + slot * per_slot;
-          for (int k = 0; k < spectral_count_; ++k) out[k] = static_cast<float>(tau[k]);
-          out[spectral_count_] = shaded ? 0.0f : 1.0f;
-        }
-      });
+  std::vector<const float*> records(nodes.size());
+  for (std::size_t u = 0; u < nodes.size(); ++u) records[u] = volume_.records(static_cast<int>(u));
+  // Every node inside the medium's box, and a rim node's two points, share
+  // one walk (parallel_depths.h).
+  std::optional<ParallelDepths> parallel;
+  if (by_records)
+    parallel.emplace(view, records.data(), static_cast<int>(nodes.size()), volume_.stride(),
+                     to_sun_lattice);
+  // τ_sun at the node of `slot` (world position `at`) into `tau`, `inner`
+  // a scratch of its size.
+  const auto depth_at = [&](std::size_t slot, const Vec3& at, std::vector<double>& tau,
+                            std::vector<double>& inner) {
+    const std::array<int, 3> index = lattice_.slot_node(slot);
+    const Vec3 node = by_records ? Vec3(index[0], index[1], index[2]) : lattice_.to_lattice(at);
+    Vec3 face;
+    if (!volume_.has_medium() || !rim_face(volume_.domain(), node, face)) {
+      if (by_records)
+        parallel->add(index, 0, tau.data());
+      else
+        scene.medium->add_optical_depth(Ray{at, to_sun}, 0.0,
+                                        std::numeric_limits<double>::infinity(), tau.data());
+      return;
+    }
+    // A rim node: 2 τ(face) − τ(inner neighbour) (lattice_view.h).
+    std::fill(inner.begin(), inner.end(), 0.0);
+    const Vec3 in = face * 2.0 - node;
+    if (by_records) {
+      // The face lies ½ from a node along the axes the rim node is beyond
+      // the box on; the inner neighbour is a node.
+      int half = 0;
+      std::array<int, 3> below, inner_node;
+      for (int a = 0; a < 3; ++a) {
+        if (face[a] != node[a]) half |= 1 << a;
+        below[a] = static_cast<int>(std::floor(face[a]));
+        inner_node[a] = static_cast<int>(std::lround(in[a]));
+        OBSCURA_CHECK(face[a] - below[a] == ((half >> a & 1) ? 0.5 : 0.0) &&
+                      in[a] == inner_node[a]);
+      }
+      parallel->add(below, half, tau.data());
+      parallel->add(inner_node, 0, inner.data());
+    } else {
+      add_depth_from(face, tau.data());
+      add_depth_from(in, inner.data());
+    }
+    for (std::size_t k = 0; k < tau.size(); ++k) tau[k] = 2.0 * tau[k] - inner[k];
+  };
+  for_blocks_shared(*processes_, lattice_.block_count(), scene.settings.threads, sun,
+                    per_slot * NodeLattice::kBlockNodes, [&](std::size_t block) {
+                      std::vector<double> tau(depths), inner(depths);
+                      for (std::size_t slot = block * NodeLattice::kBlockNodes;
+                           slot < (block + 1) * NodeLattice::kBlockNodes; ++slot) {
+                        if (!lattice_.slot_inside(slot) || !in_sun_cells(slot)) continue;
+                        const Ray ray{lattice_.slot_position(slot), to_sun};
+                        SurfaceHit hit;
+                        const bool shaded =
+                            intersect_surfaces(scene.surfaces, ray, near_m,
+                                               std::numeric_limits<double>::infinity(), hit);
+                        std::fill(tau.begin(), tau.end(), 0.0);
+                        if (sun_depths_ == SunDepths::kHere) depth_at(slot, ray.origin, tau, inner);
+                        float* out = sun.data() + slot * per_slot;
+                        for (std::size_t k = 0; k < depths; ++k)
+                          out[k] = static_cast<float>(tau[k]);
+                        out[depths] = shaded ? 0.0f : 1.0f;
+                      }
+                    });
   // Into every spectral node's records, τ_sun at its wavelength.
   parallel_for(lattice_.block_count(), scene.settings.threads, [&](std::size_t block) {
-    std::vector<double> tau(static_cast<std::size_t>(spectral_count_));
+    std::vector<double> tau(depths);
     for (std::size_t slot = block * NodeLattice::kBlockNodes;
          slot < (block + 1) * NodeLattice::kBlockNodes; ++slot) {
       const float* in = sun.data() + slot * per_slot;
-      for (int k = 0; k < spectral_count_; ++k) tau[k] = in[k];
+      for (std::size_t k = 0; k < depths; ++k) tau[k] = in[k];
       for (std::size_t u = 0; u < nodes.size(); ++u) {
         float* r = volume_.record(static_cast<int>(u), slot);
-        r[record::kTauSun] = static_cast<float>(nodes[u].lerp()(tau.data()));
-        r[record::kSunVisibility] = in[spectral_count_];
+        r[record::kTauSun] = by_records ? in[u] : static_cast<float>(nodes[u].lerp()(tau.data()));
+        r[record::kSunVisibility] = in[depths];
       }
     }
   });
