@@ -103,8 +103,8 @@ class ParallelDepths {
       }
       const double* w = cut ? cut_weights : c.weights;
       for (int j = 0; j < nodes_; ++j) {
-        const float* s = sigma_t_.data() + static_cast<std::size_t>(j) * count_ +
-                         (base + c.corner_offset);
+        const float* s =
+            sigma_t_.data() + static_cast<std::size_t>(j) * count_ + (base + c.corner_offset);
         double sum = 0.0;
         for (int k = 0; k < 8; ++k) sum += w[k] * s[corner_offsets_[static_cast<std::size_t>(k)]];
         tau[j] += sum;
@@ -176,10 +176,10 @@ class ParallelDepths {
   LatticeView lattice_;
   Vec3 direction_;
   int nodes_;
-  std::size_t count_ = 0;                   // lattice nodes
-  std::vector<float> sigma_t_;              // per spectral node, per lattice node (x fastest)
-  std::array<std::vector<Cell>, 8> cells_;  // per `half`
-  std::array<std::ptrdiff_t, 3> stride_;    // of a node's neighbours along x, y, z
+  std::size_t count_ = 0;                         // lattice nodes
+  std::vector<float> sigma_t_;                    // per spectral node, per lattice node (x fastest)
+  std::array<std::vector<Cell>, 8> cells_;        // per `half`
+  std::array<std::ptrdiff_t, 3> stride_;          // of a node's neighbours along x, y, z
   std::array<std::ptrdiff_t, 8> corner_offsets_;  // of a cell's corners from its min corner
 };
 

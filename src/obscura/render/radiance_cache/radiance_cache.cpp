@@ -20,6 +20,7 @@
 #include "obscura/render/photon_map/photon_tracing.h"
 #include "obscura/render/radiance_cache/estimates_at_nodes.h"
 #include "obscura/render/radiance_cache/flight_splat.h"
+#include "obscura/render/radiance_cache/kernel_sums.h"
 
 namespace obscura {
 namespace {
@@ -371,6 +372,15 @@ std::vector<float> RadianceCache::kernel_scattering(const Scene& scene) const {
     for (int a = 0; a < 3; ++a) {
       overlap[a] = axis_overlaps(r, lattice_.dims()[a], 0.5, cells[a] + 0.5, 0);
       overlap_moment[a] = axis_overlaps(r, lattice_.dims()[a], 0.5, cells[a] + 0.5, 1);
+    }
+    // The weights are products of one factor per axis: three 1-D passes
+    // (kernel_sums.h), on every process alike, where their arrays over the
+    // lattice's box fit.
+    if (kernel_sums_fit(lattice_)) {
+      std::array<AxisOverlaps, 3> axes;
+      for (int a = 0; a < 3; ++a) axes[a] = {overlap[a], overlap_moment[a]};
+      kernel_sums(lattice_, r, axes, at_nodes, ns, scene.settings.threads, out);
+      return out;
     }
   }
   // Otherwise (boxes, clouds on other grids) by two-point Gauss–Legendre per
