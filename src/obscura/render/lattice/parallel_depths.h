@@ -53,12 +53,9 @@ class ParallelDepths {
     const std::array<int, 3> n = {lattice.dims[0], lattice.dims[1], lattice.dims[2]};
     const std::size_t count = static_cast<std::size_t>(n[0]) * n[1] * n[2];
     stride_ = {1, n[0], static_cast<std::ptrdiff_t>(n[0]) * n[1]};
-    for (int c = 0; c < 8; ++c)
-      corner_offsets_[static_cast<std::size_t>(c)] =
-          (c & 1) * stride_[0] + (c >> 1 & 1) * stride_[1] + (c >> 2 & 1) * stride_[2];
     // σt per node, densely (x fastest), zero in the blocks the lattice does
     // not hold (there is no medium within a node of them).
-    sigma_t_.assign(static_cast<std::size_t>(nodes) * count, 0.0f);
+    sigma_t_.assign(static_cast<std::size_t>(nodes) * count, 0.0);
     constexpr int b = LatticeView::kBlock;
     std::size_t i = 0;
     for (int z = 0; z < n[2]; ++z)
@@ -71,7 +68,7 @@ class ParallelDepths {
           for (int j = 0; j < nodes; ++j) {
             const float* r = records[j] + slot * static_cast<std::size_t>(stride);
             sigma_t_[static_cast<std::size_t>(j) * count + i] =
-                static_cast<float>(static_cast<double>(r[record::kSigmaA]) + r[record::kSigmaS]);
+                static_cast<double>(r[record::kSigmaA]) + r[record::kSigmaS];
           }
         }
     count_ = count;
@@ -102,13 +99,13 @@ class ParallelDepths {
         simpson_weights(at, cell, c.t0, t_end, cut_weights);
       }
       const double* w = cut ? cut_weights : c.weights;
-      for (int j = 0; j < nodes_; ++j) {
-        const float* s =
-            sigma_t_.data() + static_cast<std::size_t>(j) * count_ + (base + c.corner_offset);
-        double sum = 0.0;
-        for (int k = 0; k < 8; ++k) sum += w[k] * s[corner_offsets_[static_cast<std::size_t>(k)]];
-        tau[j] += sum;
-      }
+      // Per spectral node, the corners pairwise along x (adjacent), summed
+      // as a tree.
+      const std::ptrdiff_t sy = stride_[1], sz = stride_[2];
+      const double* s = sigma_t_.data() + (base + c.corner_offset);
+      for (int j = 0; j < nodes_; ++j, s += count_)
+        tau[j] += ((w[0] * s[0] + w[1] * s[1]) + (w[2] * s[sy] + w[3] * s[sy + 1])) +
+                  ((w[4] * s[sz] + w[5] * s[sz + 1]) + (w[6] * s[sz + sy] + w[7] * s[sz + sy + 1]));
       if (cut) break;
     }
   }
@@ -176,11 +173,10 @@ class ParallelDepths {
   LatticeView lattice_;
   Vec3 direction_;
   int nodes_;
-  std::size_t count_ = 0;                         // lattice nodes
-  std::vector<float> sigma_t_;                    // per spectral node, per lattice node (x fastest)
-  std::array<std::vector<Cell>, 8> cells_;        // per `half`
-  std::array<std::ptrdiff_t, 3> stride_;          // of a node's neighbours along x, y, z
-  std::array<std::ptrdiff_t, 8> corner_offsets_;  // of a cell's corners from its min corner
+  std::size_t count_ = 0;                   // lattice nodes
+  std::vector<double> sigma_t_;             // per spectral node, per lattice node (x fastest)
+  std::array<std::vector<Cell>, 8> cells_;  // per `half`
+  std::array<std::ptrdiff_t, 3> stride_;    // of a node's neighbours along x, y, z
 };
 
 }  // namespace obscura

@@ -225,7 +225,8 @@ void RadianceCache::compute_sun(const Scene& scene, const std::vector<SpectralNo
   // Otherwise the medium is marched per medium sample from each node and τ
   // interpolated in wavelength; so too where the lattice holds less than a
   // quarter of its box's blocks, as the shared walk lays σt out over the
-  // whole box (a quarter of the records' memory at most).
+  // whole box (a double per node and spectral node: at most the records'
+  // memory).
   const double box_nodes =
       static_cast<double>(lattice_.dims()[0]) * lattice_.dims()[1] * lattice_.dims()[2];
   const bool by_records = sun_depths_ == SunDepths::kHere && volume_.has_medium() &&
