@@ -1,8 +1,9 @@
 // The sun's optical depths by marching the frame's own records
 // (gpu/sun_depth_job.h), on the CPU's threads, against the radiance cache's
-// own (RadianceCache with SunDepths::kHere marches the medium per sample and
-// interpolates in wavelength): the same cells and Simpson rule, so equal up
-// to the records' float rounding; the other channels untouched.
+// own (RadianceCache with SunDepths::kHere sums the same records' cells over
+// one walk shared by all nodes, render/lattice/parallel_depths.h): the same
+// cells and Simpson rule, so equal up to rounding; the other channels
+// untouched.
 #include "obscura/gpu/sun_depth_job.h"
 
 #include <gtest/gtest.h>

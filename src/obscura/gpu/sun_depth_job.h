@@ -11,11 +11,10 @@
 // outside the medium's box holds 2 τ(face) − τ(inner neighbour), as the CPU's
 // (lattice_view.h, rim_face).
 //
-// The CPU's cache marches the medium itself per medium sample and then
-// interpolates in wavelength (RadianceCache::compute_sun); this marches the
-// records, already interpolated, over the same cells with the same Simpson
-// rule: equal up to the records' float rounding (tests/gpu/
-// sun_depth_job_test.cpp measures it).
+// The CPU's cache sums the same records' cells over one walk shared by all
+// nodes (RadianceCache::compute_sun, render/lattice/parallel_depths.h); this
+// marches each node's ray over the same cells with the same Simpson rule:
+// equal up to rounding (tests/gpu/sun_depth_job_test.cpp measures it).
 #include <array>
 #include <cstdint>
 #include <limits>
