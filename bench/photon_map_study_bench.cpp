@@ -101,8 +101,21 @@ int main(int argc, char** argv) {
       "Photon map and radiance cache vs path tracer: error against a converged path-traced image";
   plot.x = {"wall time (s)", true, std::nullopt, std::nullopt};
   plot.y = {"relative RMSE", true, std::nullopt, std::nullopt};
-  for (int i = 1; i + 1 < argc; i += 2) {
+  constexpr const char* kUsage =
+      "usage: bench_photon_map_study [--width 64] [--height 48] [--reference-spp 1024]\n"
+      "         [--scene visible|lwir|both] [--threads N] [--csv FILE] [--plot FILE.png]\n"
+      "         [--methods path-tracer,photon-map,radiance-cache]\n"
+      "         [--cache-photons 25000,100000,400000,1600000] [--cache-spp 1,4]\n";
+  for (int i = 1; i < argc; i += 2) {
     const std::string a = argv[i];
+    if (a == "--help" || a == "-h") {
+      std::printf("%s", kUsage);
+      return 0;
+    }
+    if (i + 1 >= argc) {
+      std::fprintf(stderr, "option %s needs a value\n%s", a.c_str(), kUsage);
+      return 2;
+    }
     if (a == "--width")
       width = std::atoi(argv[i + 1]);
     else if (a == "--height")
@@ -124,7 +137,7 @@ int main(int argc, char** argv) {
     else if (a == "--cache-spp")
       cache_spp = number_list(a, argv[i + 1]);
     else {
-      std::fprintf(stderr, "unknown option %s\n", a.c_str());
+      std::fprintf(stderr, "unknown option %s\n%s", a.c_str(), kUsage);
       return 2;
     }
   }
