@@ -363,9 +363,14 @@ std::vector<float> RadianceCache::kernel_scattering(const Scene& scene) const {
            slot < (block + 1) * NodeLattice::kBlockNodes; ++slot) {
         if (!lattice_.slot_inside(slot)) continue;
         const std::array<int, 3> n = lattice_.slot_node(slot);
-        const Vec3 voxel(std::clamp(n[0] - 1, 0, d.nx - 1), std::clamp(n[1] - 1, 0, d.ny - 1),
-                         std::clamp(n[2] - 1, 0, d.nz - 1));
-        medium.coefficients_at(frame->placement.index_to_world(voxel), point);
+        const int vx = std::clamp(n[0] - 1, 0, d.nx - 1), vy = std::clamp(n[1] - 1, 0, d.ny - 1),
+                  vz = std::clamp(n[2] - 1, 0, d.nz - 1);
+        if (frame->voxels) {  // the voxel itself, as the lattice's records copy it
+          const std::size_t v = frame->voxels->index(vx, vy, vz);
+          for (int k = 0; k < ns; ++k) at_nodes[slot * ns + k] = frame->voxels->sigma_s(k)[v];
+          continue;
+        }
+        medium.coefficients_at(frame->placement.index_to_world(Vec3(vx, vy, vz)), point);
         for (int k = 0; k < ns; ++k) at_nodes[slot * ns + k] = static_cast<float>(point.sigma_s[k]);
       }
     });
