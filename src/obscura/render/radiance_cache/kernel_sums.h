@@ -9,8 +9,9 @@
 // over the offsets d in [−r, r]³, σs at the nodes (zero outside the lattice
 // and in blocks it does not hold). The weights are products of one factor
 // per axis, so each sum is three one-dimensional passes (along x, then y,
-// then z) over the lattice's box: 3 (2r + 1) multiply-adds per node and sum
-// instead of (2r + 1)³. The same sums, added in another order.
+// then z) over the lattice's box, the four sums sharing their first passes:
+// nine passes of 2r + 1 multiply-adds per node instead of 4 (2r + 1)³. The
+// same sums, added in another order.
 #include <array>
 #include <cstddef>
 #include <vector>
