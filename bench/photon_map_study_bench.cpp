@@ -13,6 +13,7 @@
 // The RMSE against the reference contains the reference's own noise in
 // quadrature; the column "less ref." takes it out, sqrt(RMSE² − noise²),
 // the method's own error where the reference's noise is smaller.
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -141,20 +142,24 @@ int main(int argc, char** argv) {
       return 2;
     }
   }
-  auto wanted = [&](const std::string& method) {
-    return ("," + methods + ",").find("," + method + ",") != std::string::npos;
-  };
+  // The methods named, each one known.
+  std::vector<std::string> wanted_methods;
   {
     std::stringstream in(methods);
     std::string m;
-    while (std::getline(in, m, ','))
+    while (std::getline(in, m, ',')) {
       if (m != "path-tracer" && m != "photon-map" && m != "radiance-cache") {
         std::fprintf(stderr,
                      "--methods: expected path-tracer, photon-map or radiance-cache, got '%s'\n",
                      m.c_str());
         return 2;
       }
+      wanted_methods.push_back(m);
+    }
   }
+  auto wanted = [&](const std::string& method) {
+    return std::find(wanted_methods.begin(), wanted_methods.end(), method) != wanted_methods.end();
+  };
   std::ofstream out;
   if (!csv.empty()) {
     out.open(csv);

@@ -79,8 +79,9 @@ TEST(ParallelDepths, EveryNodesDepthIsItsOwnMarchs) {
           }
           double shared[2] = {0.0, 0.0}, own[2] = {0.0, 0.0};
           parallel.add(below, half, shared);
-          add_lattice_optical_depths<kStride, 2>(view, records, 2, Ray{from, d},
-                                                 std::numeric_limits<double>::infinity(), own);
+          for (int j = 0; j < 2; ++j)
+            own[j] = lattice_optical_depth<kStride>(view, records[j], Ray{from, d},
+                                                    std::numeric_limits<double>::infinity());
           double one = 0.0;
           parallel_one.add(below, half, &one);
           EXPECT_EQ(one, shared[0]);  // each spectral node's sums its own
@@ -121,8 +122,8 @@ TEST(ParallelDepths, ARayLeavingAtOnceCrossesOnlyItsCutCell) {
   const int top = lattice.dims()[2] - 2;  // the last node inside the box
   double tau = 0.0, own = 0.0;
   parallel.add({4, 4, top}, 0, &tau);
-  add_lattice_optical_depths<record::kMediumStride, 1>(
-      view, records, 1, Ray{Vec3(4, 4, top), up}, std::numeric_limits<double>::infinity(), &own);
+  own = lattice_optical_depth<record::kMediumStride>(view, records[0], Ray{Vec3(4, 4, top), up},
+                                                     std::numeric_limits<double>::infinity());
   EXPECT_NEAR(tau, own, 1e-6 * (1.0 + own));
   // Half a spacing of at most σa + σs ≤ 3 /m.
   EXPECT_LE(tau, 0.5 * lattice.spacing_m() * 3.0 + 1e-9);

@@ -70,6 +70,15 @@ struct LatticeView {
                          static_cast<std::size_t>(block_dims[1]) * static_cast<std::size_t>(bz))];
     return b < 0 ? kNoSlot : static_cast<std::size_t>(b) * kBlockNodes;
   }
+  // The slot of node (i, j, k) inside the lattice, kNoSlot where its block
+  // is not held (NodeLattice::slot_of without the periodic wrap).
+  OBSCURA_HOST_DEVICE std::size_t node_slot(int i, int j, int k) const {
+    const std::size_t first = block_first_slot(i / kBlock, j / kBlock, k / kBlock);
+    return first == kNoSlot
+               ? kNoSlot
+               : first + static_cast<std::size_t>(i % kBlock +
+                                                  kBlock * (j % kBlock + kBlock * (k % kBlock)));
+  }
 };
 
 // Whether lattice point `node` lies outside the medium's box `domain` (a rim

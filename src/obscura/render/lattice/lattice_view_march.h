@@ -458,64 +458,41 @@ OBSCURA_HOST_DEVICE std::uint64_t march_lattice_view(const LatticeView& lattice,
                                              transmittance, attenuation);
 }
 
-// The optical depths ∫ σt along the lattice ray over [0, t_max] of `nodes`
-// spectral nodes (σt = σa + σs of the records of Stride floats at
-// records[j]), added to tau[j]: Simpson's rule on each cell's entry, middle
-// and exit, exact for the trilinear σt, a cubic along the line, over the same
-// cells as the march; the nodes share the walk. Reads only the medium
-// channels, so the light channels of the same records may be written
-// meanwhile (the sun's optical depths: RadianceCache::compute_sun,
-// gpu/sun_depth_job.h).
-template <int Stride, int MaxNodes>
-OBSCURA_HOST_DEVICE void add_lattice_optical_depths(const LatticeView& lattice,
-                                                    const float* const* records, int nodes,
-                                                    const Ray& lray, double t_max, double* tau) {
+// The optical depth ∫ σt along the lattice ray over [0, t_max] (σt = σa + σs
+// of the records of Stride floats at `records`): Simpson's rule on each cell's
+// entry, middle and exit, exact for the trilinear σt, a cubic along the line,
+// over the same cells as the march. Reads only the medium channels, so the
+// light channels of the same records may be written meanwhile (the sun's
+// optical depths, gpu/sun_depth_job.h).
+template <int Stride>
+OBSCURA_HOST_DEVICE double lattice_optical_depth(const LatticeView& lattice, const float* records,
+                                                 const Ray& lray, double t_max) {
   namespace d = lattice_march_detail;
   double t_begin = 0.0, t_end = t_max;
-  if (!lattice.domain.intersect(lray, t_begin, t_end) || !(t_end > t_begin)) return;
-  const int n = MaxNodes == 1 ? 1 : nodes;
+  if (!lattice.domain.intersect(lray, t_begin, t_end) || !(t_end > t_begin)) return 0.0;
+  double tau = 0.0;
   float frac[3];
   float values[record::kMediumStride];
   const Vec3& o = lray.origin;
   const Vec3& dir = lray.direction;
   const double o3[3] = {o.x, o.y, o.z}, d3[3] = {dir.x, dir.y, dir.z};
-  // σt at the cell's entry, middle and exit, per node: pointers into
-  // `values_at`, the entry and exit swapped when the exit is reused (one
-  // node copies instead, so that it stays in registers), as in the march.
-  double values_at[3][MaxNodes];
-  double* sigma_t[3] = {values_at[0], values_at[1], values_at[2]};
+  double sigma_t[3] = {0.0, 0.0, 0.0};  // at the cell's entry, middle and exit
   double previous_end = -1.0;
   d::for_each_cell(
       lattice, o, dir, t_begin, t_end,
       [&](const std::array<int, 3>& cell, double t0, double t1,
           const std::array<std::size_t, 8>& slot) OBSCURA_ALWAYS_INLINE {
         const bool reuse = t0 == previous_end;
-        if (reuse) {
-          if constexpr (MaxNodes == 1)
-            sigma_t[0][0] = sigma_t[2][0];
-          else
-            std::swap(sigma_t[0], sigma_t[2]);
-        }
+        if (reuse) sigma_t[0] = sigma_t[2];
         const double ts[3] = {t0, 0.5 * (t0 + t1), t1};
         for (int p = reuse ? 1 : 0; p < 3; ++p) {
           d::cell_fractions(o3, d3, ts[p], cell, frac);
-          for (int j = 0; j < n; ++j) {
-            d::interpolate_lerps<Stride, record::kMediumStride>(records[j], slot, frac, values);
-            sigma_t[p][j] = static_cast<double>(values[record::kSigmaA]) + values[record::kSigmaS];
-          }
+          d::interpolate_lerps<Stride, record::kMediumStride>(records, slot, frac, values);
+          sigma_t[p] = static_cast<double>(values[record::kSigmaA]) + values[record::kSigmaS];
         }
-        for (int j = 0; j < n; ++j)
-          tau[j] += (t1 - t0) / 6.0 * (sigma_t[0][j] + 4.0 * sigma_t[1][j] + sigma_t[2][j]);
+        tau += (t1 - t0) / 6.0 * (sigma_t[0] + 4.0 * sigma_t[1] + sigma_t[2]);
         previous_end = t1;
       });
-}
-
-// The optical depth of one spectral node's records (above).
-template <int Stride>
-OBSCURA_HOST_DEVICE double lattice_optical_depth(const LatticeView& lattice, const float* records,
-                                                 const Ray& lray, double t_max) {
-  double tau = 0.0;
-  add_lattice_optical_depths<Stride, 1>(lattice, &records, 1, lray, t_max, &tau);
   return tau;
 }
 

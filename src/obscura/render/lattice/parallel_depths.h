@@ -34,6 +34,7 @@
 #include <limits>
 #include <vector>
 
+#include "obscura/core/bbox.h"
 #include "obscura/core/ray.h"
 #include "obscura/core/vec3.h"
 #include "obscura/medium/lattice_walker.h"
@@ -43,28 +44,36 @@ namespace obscura {
 
 class ParallelDepths {
  public:
+  // Whether σt laid out over `lattice`'s whole box (a double per node and
+  // spectral node) stays within the records' memory: the box holds at most
+  // four times the lattice's held nodes, which a sparse lattice's need not.
+  static bool fits(const LatticeView& lattice) {
+    return static_cast<double>(lattice.dims[0]) * lattice.dims[1] * lattice.dims[2] <=
+           4.0 * static_cast<double>(lattice.zero_slot);
+  }
+
   // The templates for `lattice` along `direction` (lattice units per metre,
   // LatticeView::to_lattice_direction, so that depths come out per metre),
   // and σt = σa + σs of the records of `nodes` spectral nodes (`stride`
   // floats each, at records[j]) per lattice node.
   ParallelDepths(const LatticeView& lattice, const float* const* records, int nodes, int stride,
                  const Vec3& direction)
-      : lattice_(lattice), direction_(direction), nodes_(nodes) {
-    const std::array<int, 3> n = {lattice.dims[0], lattice.dims[1], lattice.dims[2]};
+      : domain_(lattice.domain),
+        dims_{lattice.dims[0], lattice.dims[1], lattice.dims[2]},
+        direction_(direction),
+        nodes_(nodes) {
+    const std::array<int, 3>& n = dims_;
     const std::size_t count = static_cast<std::size_t>(n[0]) * n[1] * n[2];
     stride_ = {1, n[0], static_cast<std::ptrdiff_t>(n[0]) * n[1]};
     // σt per node, densely (x fastest), zero in the blocks the lattice does
     // not hold (there is no medium within a node of them).
     sigma_t_.assign(static_cast<std::size_t>(nodes) * count, 0.0);
-    constexpr int b = LatticeView::kBlock;
     std::size_t i = 0;
     for (int z = 0; z < n[2]; ++z)
       for (int y = 0; y < n[1]; ++y)
         for (int x = 0; x < n[0]; ++x, ++i) {
-          const std::size_t first = lattice.block_first_slot(x / b, y / b, z / b);
-          if (first == LatticeView::kNoSlot) continue;
-          const std::size_t slot =
-              first + static_cast<std::size_t>(x % b + b * (y % b + b * (z % b)));
+          const std::size_t slot = lattice.node_slot(x, y, z);
+          if (slot == LatticeView::kNoSlot) continue;
           for (int j = 0; j < nodes; ++j) {
             const float* r = records[j] + slot * static_cast<std::size_t>(stride);
             sigma_t_[static_cast<std::size_t>(j) * count + i] =
@@ -83,7 +92,7 @@ class ParallelDepths {
     const double at[3] = {node[0] + 0.5 * (half & 1), node[1] + 0.5 * (half >> 1 & 1),
                           node[2] + 0.5 * (half >> 2 & 1)};
     double t_begin = 0.0, t_end = std::numeric_limits<double>::infinity();
-    if (!lattice_.domain.intersect(Ray{Vec3(at[0], at[1], at[2]), direction_}, t_begin, t_end) ||
+    if (!domain_.intersect(Ray{Vec3(at[0], at[1], at[2]), direction_}, t_begin, t_end) ||
         !(t_end > 0.0))
       return;
     const std::ptrdiff_t base = node[0] * stride_[0] + node[1] * stride_[1] + node[2] * stride_[2];
@@ -149,8 +158,8 @@ class ParallelDepths {
     double t_max = std::numeric_limits<double>::infinity();
     int reach = 0;
     for (int a = 0; a < 3; ++a) {
-      if (d[a] != 0.0) t_max = std::min(t_max, (lattice_.dims[a] + 1.0) / std::abs(d[a]));
-      reach = std::max(reach, lattice_.dims[a] + 1);
+      if (d[a] != 0.0) t_max = std::min(t_max, (dims_[a] + 1.0) / std::abs(d[a]));
+      reach = std::max(reach, dims_[a] + 1);
     }
     if (!(t_max < std::numeric_limits<double>::infinity())) return;  // no direction: no cells
     LatticeWalker walker(Vec3(o[0], o[1], o[2]), direction_, 0.0, t_max, 1.0,
@@ -170,7 +179,8 @@ class ParallelDepths {
     }
   }
 
-  LatticeView lattice_;
+  BBox3 domain_;             // the medium's box (LatticeView::domain)
+  std::array<int, 3> dims_;  // the lattice's nodes per axis
   Vec3 direction_;
   int nodes_;
   std::size_t count_ = 0;                   // lattice nodes

@@ -66,16 +66,7 @@ void kernel_sums(const NodeLattice& lattice, int r, const std::array<AxisOverlap
             lattice.slot_of(x, y, static_cast<int>(z));
   });
   std::vector<double> values(count), x0(count), x1(count), y00(count), y01(count), y10(count);
-  std::vector<double>& sum = values;  // the passes' last outputs reuse these
-  std::vector<double>& sum_moment = x0;
   constexpr int kMoments = 4;
-  const auto write = [&](int k, int q, const std::vector<double>& s) {
-    parallel_for(count, threads, [&](std::size_t i) {
-      if (slot[i] == NodeLattice::kNoSlot) return;
-      out[(slot[i] * static_cast<std::size_t>(samples) + k) * kMoments + q] =
-          static_cast<float>(s[i]);
-    });
-  };
   for (int k = 0; k < samples; ++k) {
     for (std::size_t i = 0; i < count; ++i)
       values[i] = slot[i] == NodeLattice::kNoSlot
@@ -86,14 +77,17 @@ void kernel_sums(const NodeLattice& lattice, int r, const std::array<AxisOverlap
     pass(box, 1, r, overlaps[1].weight, x0, y00, threads);
     pass(box, 1, r, overlaps[1].moment, x0, y01, threads);
     pass(box, 1, r, overlaps[1].weight, x1, y10, threads);
-    pass(box, 2, r, overlaps[2].weight, y00, sum, threads);
-    write(k, 0, sum);
-    pass(box, 2, r, overlaps[2].weight, y10, sum, threads);
-    write(k, 1, sum);
-    pass(box, 2, r, overlaps[2].weight, y01, sum, threads);
-    write(k, 2, sum);
-    pass(box, 2, r, overlaps[2].moment, y00, sum_moment, threads);
-    write(k, 3, sum_moment);
+    // The z passes' outputs S0, Sx, Sy, Sz into arrays whose inputs are spent.
+    pass(box, 2, r, overlaps[2].weight, y00, values, threads);
+    pass(box, 2, r, overlaps[2].weight, y10, x0, threads);
+    pass(box, 2, r, overlaps[2].weight, y01, x1, threads);
+    pass(box, 2, r, overlaps[2].moment, y00, y10, threads);
+    const std::vector<double>* sums[kMoments] = {&values, &x0, &x1, &y10};
+    parallel_for(count, threads, [&](std::size_t i) {
+      if (slot[i] == NodeLattice::kNoSlot) return;
+      float* o = out.data() + (slot[i] * static_cast<std::size_t>(samples) + k) * kMoments;
+      for (int q = 0; q < kMoments; ++q) o[q] = static_cast<float>((*sums[q])[i]);
+    });
   }
 }
 

@@ -224,20 +224,16 @@ void RadianceCache::compute_sun(const Scene& scene, const std::vector<SpectralNo
   // a fraction of its cost (docs/performance.md, "The sun's depths").
   // Otherwise the medium is marched per medium sample from each node and τ
   // interpolated in wavelength; so too where the lattice holds less than a
-  // quarter of its box's blocks, as the shared walk lays σt out over the
-  // whole box (a double per node and spectral node: at most the records'
-  // memory).
-  const double box_nodes =
-      static_cast<double>(lattice_.dims()[0]) * lattice_.dims()[1] * lattice_.dims()[2];
-  const bool by_records = sun_depths_ == SunDepths::kHere && volume_.has_medium() &&
-                          box_nodes <= 4.0 * static_cast<double>(lattice_.slot_count());
+  // quarter of its box's nodes (ParallelDepths::fits).
+  const LatticeView view = volume_.view();
+  const bool by_records =
+      sun_depths_ == SunDepths::kHere && volume_.has_medium() && ParallelDepths::fits(view);
   OBSCURA_CHECK(!by_records || volume_.node_count() == static_cast<int>(nodes.size()));
   const std::size_t depths = by_records ? nodes.size() : static_cast<std::size_t>(spectral_count_);
   const std::size_t per_slot = depths + 1;
   // τ_sun per medium sample (or spectral node), then the visibility, per slot.
   std::vector<float> sun(lattice_.slot_count() * per_slot, 0.0f);
   const Vec3 to_sun = scene.sun.direction();
-  const LatticeView view = volume_.view();
   const Vec3 to_sun_lattice = lattice_.to_lattice_direction(to_sun);
   // Nodes of the cells in sun_cells_ (a node serves the cells on both sides).
   const auto in_sun_cells = [&](std::size_t slot) {
