@@ -43,12 +43,19 @@ class LatticeWalker {
 
   // Writes the next cell and its [t0, t1]; false when the range is exhausted.
   OBSCURA_HOST_DEVICE bool next(std::array<int, 3>& cell, double& t0, double& t1) {
+    int exit_axis;
+    return next(cell, t0, t1, exit_axis);
+  }
+  // The same, and the axis of the cell's face the line leaves it through at
+  // t1 (−1 where t1 is the range's end inside the cell).
+  OBSCURA_HOST_DEVICE bool next(std::array<int, 3>& cell, double& t0, double& t1, int& exit_axis) {
     if (done_ || !(t_ < t_end_)) return false;
     int axis = 0;
     if (t_next_[1] < t_next_[axis]) axis = 1;
     if (t_next_[2] < t_next_[axis]) axis = 2;
     cell = cell_;
     t0 = t_;
+    exit_axis = t_next_[axis] <= t_end_ ? axis : -1;
     t1 = std::min(t_next_[axis], t_end_);
     // Guard against a crossing computed marginally before t_ by rounding.
     if (t1 < t0) t1 = t0;

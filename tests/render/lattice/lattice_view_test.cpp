@@ -70,5 +70,48 @@ TEST(LatticeMarchInterpolation, IsTrilinearAndExactAtTheCorners) {
   }
 }
 
+// A point on a face of the cell: the face's bilinear interpolation (four
+// corners) in both forms (lerps for a record of four floats, weights for
+// longer ones) against the trilinear formula with the fraction across the
+// face 0 or 1, for every face; the weights exact at the face's corners.
+template <int Stride>
+void expect_face_interpolation_is_trilinear() {
+  Rng rng(11, 0);
+  std::vector<float> records(8 * Stride);
+  const std::array<std::size_t, 8> slot = {0, 1, 2, 3, 4, 5, 6, 7};
+  for (int trial = 0; trial < 300; ++trial)
+    for (int axis = 0; axis < 3; ++axis)
+      for (int side = 0; side < 2; ++side) {
+        for (float& r : records) r = static_cast<float>(100.0 * rng.uniform() - 20.0);
+        float f[3];
+        for (int a = 0; a < 3; ++a)
+          f[a] = trial < 8 ? static_cast<float>(trial >> a & 1) : static_cast<float>(rng.uniform());
+        // The walk's fraction across the face is computed, not set: the
+        // interpolation must not read it.
+        f[axis] = side == 1 ? 0.99f : 0.01f;
+        float out[Stride];
+        lattice_march_detail::FaceInterpolation<Stride>(axis, side, f)(records.data(), slot, out);
+        for (int i = 0; i < Stride; ++i) {
+          double exact = 0.0;
+          for (int c = 0; c < 8; ++c) {
+            double w = 1.0;
+            for (int a = 0; a < 3; ++a) {
+              const double fa = a == axis ? side : f[a];
+              w *= (c >> a & 1) ? fa : 1.0 - fa;
+            }
+            exact += w * records[c * Stride + i];
+          }
+          EXPECT_NEAR(out[i], exact, 1e-5 * 120.0)
+              << "trial " << trial << " axis " << axis << " side " << side;
+          if (Stride > 4 && trial < 8 && (trial >> axis & 1) == side) EXPECT_EQ(out[i], exact);
+        }
+      }
+}
+
+TEST(LatticeMarchInterpolation, OnAFaceIsTheFacesBilinear) {
+  expect_face_interpolation_is_trilinear<4>();
+  expect_face_interpolation_is_trilinear<8>();
+}
+
 }  // namespace
 }  // namespace obscura
