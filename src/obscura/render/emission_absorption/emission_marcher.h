@@ -10,12 +10,14 @@
 //
 // An in-scattering source that lights the medium by a sun may tell the
 // sun's optical depth along the ray (sun_depths(t, tau): τ_sun per node at
-// distance t) and the medium at a point (medium_at(t, point)): where τ_sun
-// climbs by more than 1 across a cell, that node's cell is cut into equal
-// pieces (cell_pieces, cell_quadrature.h), the medium and the light read at
-// the pieces' points, as the lattice march does
-// (render/lattice/lattice_view_march.h, docs/physics.md). (The emission of
-// overlapping clouds there is σa B at the point's one temperature.)
+// distance t), the medium at a point (medium_at(t, point)) and the sun's part
+// of what it adds (add with a seventh argument, sun[j] = σs J_sun; with an
+// eighth, true, that part alone): where τ_sun climbs by more than 1 across a
+// cell, that node's sun part is integrated over equal pieces of the cell
+// (cell_pieces, cell_quadrature.h), the medium and the sun's light read at
+// the pieces' points, and the rest of the emissivity over the whole cell, as
+// the lattice march does (render/lattice/lattice_view_march.h,
+// docs/physics.md).
 //
 // An in-scattering source that keeps part of the scattering in the ray's own
 // direction (forward_fraction(g): delta-M's f, the radiance cache's rays
@@ -65,6 +67,7 @@ class EmissionMarcher final : public MarchVisitor {
         sigma_t_[0][j] = sigma_t_[2][j];
         emissivity_[0][j] = emissivity_[2][j];
         forward_[0][j] = forward_[2][j];
+        sun_[0][j] = sun_[2][j];
       }
     for (int p = reuse ? 1 : 0; p < 3; ++p) point(cell, p, t[p]);
     have_exit_ = true;
@@ -123,18 +126,19 @@ class EmissionMarcher final : public MarchVisitor {
       return 0.0;
   }
 
-  // Node j's cell in `pieces` equal pieces: the medium (InScattering::
-  // medium_at: σa, σs, g and T at a point) and the light read at each
-  // piece's middle and exit (the last exit is the cell's).
+  // Node j's cell with the sun's part in `pieces` equal pieces: the medium
+  // (InScattering::medium_at: σa, σs and g at a point) and the sun's light
+  // read at each piece's middle and exit (the last exit is the cell's); the
+  // rest over the whole cell.
   void cut_cell(const MarchCell& cell, int j, int pieces) {
     const double t0 = cell.t_begin, step = (cell.t_end - cell.t_begin) / pieces;
-    const SpectralNode& nd = nodes_.nodes()[j];
-    const SpectralLerp lerp = nd.lerp();
+    const SpectralLerp lerp = nodes_.nodes()[j].lerp();
     NodeArray sigma_s{}, g{}, emissivity{};
     double st[3], fw[3], em[3];
     st[2] = sigma_t_[0][j];
     fw[2] = forward_[0][j];
-    em[2] = emissivity_[0][j];
+    em[2] = sun_[0][j];
+    double sun_light = 0.0, seen = 1.0;
     for (int k = 0; k < pieces; ++k) {
       st[0] = st[2];
       fw[0] = fw[2];
@@ -145,7 +149,7 @@ class EmissionMarcher final : public MarchVisitor {
           // would read as outside it there after rounding).
           st[2] = sigma_t_[2][j];
           fw[2] = forward_[2][j];
-          em[2] = emissivity_[2][j];
+          em[2] = sun_[2][j];
           continue;
         }
         const double t = t0 + (k + 0.5 * p) * step;
@@ -159,16 +163,26 @@ class EmissionMarcher final : public MarchVisitor {
                            lerp.frac * ms[lerp.sample1] * mg[lerp.sample1]) /
                               ss
                         : 0.0;
-        emissivity[j] = sa != 0.0 ? sa * (*nd.planck_table)(medium_point_.temperature_k) : 0.0;
-        in_scattering_.add(cell, p, t, sigma_s.data(), g.data(), emissivity.data());
+        emissivity[j] = 0.0;
+        in_scattering_.add(cell, p, t, sigma_s.data(), g.data(), emissivity.data(), nullptr, true);
         fw[p] = forward_at(ss, g[j]);
         em[p] = emissivity[j];
       }
-      const double* pst[3] = {st, st + 1, st + 2};
-      const double* pfw[3] = {fw, fw + 1, fw + 2};
-      const double* pem[3] = {em, em + 1, em + 2};
-      add(step, 1, pst, pfw, pem, j);
+      // add_cell_forward's choice: σt − φ where φ is not zero.
+      const bool kept = fw[0] != 0.0 || fw[1] != 0.0 || fw[2] != 0.0;
+      const double scaled[3] = {st[0] - fw[0], st[1] - fw[1], st[2] - fw[2]};
+      const CellEmission c = integrate_cell(step, kept ? scaled : st, em);
+      sun_light += seen * c.emitted;
+      seen *= c.transmittance;
     }
+    radiance_[j] += (kKeepsForward ? attenuation_[j] : transmittance_[j]) * sun_light;
+    // The rest over the whole cell.
+    const double smooth[3] = {emissivity_[0][j] - sun_[0][j], emissivity_[1][j] - sun_[1][j],
+                              emissivity_[2][j] - sun_[2][j]};
+    const double* cst[3] = {&sigma_t_[0][j], &sigma_t_[1][j], &sigma_t_[2][j]};
+    const double* cfw[3] = {&forward_[0][j], &forward_[1][j], &forward_[2][j]};
+    const double* csm[3] = {smooth, smooth + 1, smooth + 2};
+    add(cell.t_end - cell.t_begin, 1, cst, cfw, csm, j);
   }
 
   // σt and the emissivity at point p for every node.
@@ -197,7 +211,11 @@ class EmissionMarcher final : public MarchVisitor {
       g[j] = ss > 0.0 ? gs / ss : 0.0;
       forward_[p][j] = forward_at(ss, g[j]);
     }
-    in_scattering_.add(cell, p, t, sigma_s.data(), g.data(), emissivity_[p].data());
+    if constexpr (kCutsSteepCells)
+      in_scattering_.add(cell, p, t, sigma_s.data(), g.data(), emissivity_[p].data(),
+                         sun_[p].data());
+    else
+      in_scattering_.add(cell, p, t, sigma_s.data(), g.data(), emissivity_[p].data());
   }
 
   const SpectralNodes& nodes_;
@@ -207,7 +225,8 @@ class EmissionMarcher final : public MarchVisitor {
   double* transmittance_;
   double* attenuation_;
   std::array<NodeArray, 3> sigma_t_{}, forward_{}, emissivity_{};
-  MediumPoint medium_point_;  // cut_cell's
+  std::array<NodeArray, 3> sun_{};  // σs J_sun (kCutsSteepCells)
+  MediumPoint medium_point_;        // cut_cell's
   bool have_exit_ = false;
   std::uint64_t cells_ = 0;
 };

@@ -24,6 +24,15 @@
 //     static constexpr bool kKeepsForward = true;
 //     void point(int j, const float* values, double& sigma_t, double& emissivity,
 //                double& forward) const;
+//     // With kSteepChannel: the part of ε that falls off as e^{−steep
+//     // channel}, `steep`, given apart at the cell's points, and alone at
+//     // other points from a record of which only the first kSteepReads
+//     // floats were interpolated (φ = 0 for a source without kKeepsForward).
+//     static constexpr int kSteepReads = …;
+//     void split_point(int j, const float* values, double& sigma_t, double& emissivity,
+//                      double& forward, double& steep) const;
+//     void steep_point(int j, const float* values, double& sigma_t, double& steep,
+//                      double& forward) const;
 //   };
 //
 // The cell quadrature fits a parabola to the source function through three
@@ -31,8 +40,14 @@
 // the cell (a grazing sun on an optically thick cell: van de Hulst's problem
 // 1d, τ 32 and μ0 0.1, read +24 % with a cell one optical depth thick, the
 // sun's depth changing by 10 across it). So where the steep channel changes
-// by more than 1 between a cell's entry and exit, the cell is cut into equal
-// pieces (cell_pieces, cell_quadrature.h), each integrated alike.
+// by more than 1 between a cell's entry and exit, the steep part of ε is
+// integrated over equal pieces of the cell (cell_pieces, cell_quadrature.h),
+// each alike, and the rest of ε (smooth: the records' trilinear channels)
+// over the whole cell: the quadrature is linear in ε, so the two add up. A
+// piece's points read only what the steep part needs (the sun's light: 2 of
+// the radiance cache's 4 groups of channels, no harmonics): 32 % of the
+// cache's march on the demo frame was its pieces when they read everything
+// (docs/performance.md).
 //
 // Blocks the lattice does not hold and cells none of whose corners holds
 // medium are skipped; they are zero. The CPU marches every node of a band
@@ -228,10 +243,16 @@ struct RecordInterpolation {
   }
   OBSCURA_HOST_DEVICE void operator()(const float* records, const std::array<std::size_t, 8>& slot,
                                       float* out) const {
+    first<Stride>(records, slot, out);
+  }
+  // The first Count floats of the record only.
+  template <int Count>
+  OBSCURA_HOST_DEVICE void first(const float* records, const std::array<std::size_t, 8>& slot,
+                                 float* out) const {
     if constexpr (kByWeights)
-      interpolate<Stride>(records, slot, weights, out);
+      interpolate<Stride, Count>(records, slot, weights, out);
     else
-      interpolate_lerps<Stride>(records, slot, f, out);
+      interpolate_lerps<Stride, Count>(records, slot, f, out);
   }
 };
 
@@ -318,6 +339,15 @@ OBSCURA_HOST_DEVICE inline void cell_fractions(const double o[3], const double d
   }
 }
 
+// Source::kSteepReads: the floats of a record a steep_point reads.
+template <class Source>
+constexpr int steep_reads() {
+  if constexpr (requires { Source::kSteepReads; })
+    return Source::kSteepReads;
+  else
+    return 0;
+}
+
 // Source::kKeepsForward, or false when the source has none.
 template <class Source>
 constexpr bool keeps_forward() {
@@ -395,12 +425,22 @@ OBSCURA_FLATTEN OBSCURA_HOST_DEVICE std::uint64_t march_lattice_ray(
   // `values_at`, the entry and exit swapped when the exit is reused (a
   // device thread's one node copies instead, so that it stays in registers).
   constexpr bool kForward = d::keeps_forward<Source>();
-  double values_at[kForward ? 9 : 6][MaxNodes];
+  constexpr int kSteep = d::steep_channel<Source>();
+  constexpr bool kSplits = kSteep >= 0;
+  static_assert(!kSplits || d::steep_reads<Source>() % 4 == 0,
+                "a source with a steep channel "
+                "says what its steep part reads");
+  double values_at[6 + (kForward ? 3 : 0) + (kSplits ? 3 : 0)][MaxNodes];
   double* sigma_t[3] = {values_at[0], values_at[1], values_at[2]};
   double* emissivity[3] = {values_at[3], values_at[4], values_at[5]};
   // φ at the three points (kForward only).
   double* forward[3] = {values_at[kForward ? 6 : 0], values_at[kForward ? 7 : 1],
                         values_at[kForward ? 8 : 2]};
+  // ε's steep part at the three points (kSplits only).
+  constexpr int kSteepAt = kForward ? 9 : 6;
+  double* steep_emissivity[3] = {values_at[kSplits ? kSteepAt : 0],
+                                 values_at[kSplits ? kSteepAt + 1 : 1],
+                                 values_at[kSplits ? kSteepAt + 2 : 2]};
   float frac[3];
   // Zero beyond the record: a CPU source may read its last channels in
   // whole groups of four (HgConvolution::readable).
@@ -410,7 +450,6 @@ OBSCURA_FLATTEN OBSCURA_HOST_DEVICE std::uint64_t march_lattice_ray(
   const Vec3& o = lray.origin;
   const Vec3& dir = lray.direction;
   const double o3[3] = {o.x, o.y, o.z}, d3[3] = {dir.x, dir.y, dir.z};
-  constexpr int kSteep = d::steep_channel<Source>();
   // The steep channel's value at the cell's entry and exit, per node.
   double steep_at[2][MaxNodes] = {};
   // σt and ε (and the steep channel) at lattice point o + t d of `cell` into
@@ -421,10 +460,15 @@ OBSCURA_FLATTEN OBSCURA_HOST_DEVICE std::uint64_t march_lattice_ray(
                            double* steep) OBSCURA_ALWAYS_INLINE {
     for (int j = 0; j < n; ++j) {
       interpolate(records[j], slot, values);
-      if constexpr (kForward)
+      if constexpr (kSplits) {
+        double phi;
+        source.split_point(j, values, sigma_t[p][j], emissivity[p][j], phi, steep_emissivity[p][j]);
+        if constexpr (kForward) forward[p][j] = phi;
+      } else if constexpr (kForward) {
         source.point(j, values, sigma_t[p][j], emissivity[p][j], forward[p][j]);
-      else
+      } else {
         source.point(j, values, sigma_t[p][j], emissivity[p][j]);
+      }
       if constexpr (kSteep >= 0)
         if (steep) steep[j] = values[kSteep];
     }
@@ -446,10 +490,12 @@ OBSCURA_FLATTEN OBSCURA_HOST_DEVICE std::uint64_t march_lattice_ray(
       sigma_t[0][0] = sigma_t[2][0];
       emissivity[0][0] = emissivity[2][0];
       if constexpr (kForward) forward[0][0] = forward[2][0];
+      if constexpr (kSplits) steep_emissivity[0][0] = steep_emissivity[2][0];
     } else {
       std::swap(sigma_t[0], sigma_t[2]);
       std::swap(emissivity[0], emissivity[2]);
       if constexpr (kForward) std::swap(forward[0], forward[2]);
+      if constexpr (kSplits) std::swap(steep_emissivity[0], steep_emissivity[2]);
     }
   };
   // Node j0's … j0 + count − 1's cell of length h.
@@ -503,32 +549,53 @@ OBSCURA_FLATTEN OBSCURA_HOST_DEVICE std::uint64_t march_lattice_ray(
             add(t1 - t0, 1, st, fw, em, j);
             continue;
           }
-          // Equal pieces, each from its entry (the last one's
-          // exit), middle and exit, for this node alone; the
-          // cell's own three points stay for the next cell.
-          double sub_st[3], sub_em[3], sub_fw[3] = {};
-          sub_st[2] = sigma_t[0][j];
-          sub_em[2] = emissivity[0][j];
-          if constexpr (kForward) sub_fw[2] = forward[0][j];
-          const double step = (t1 - t0) / pieces[j];
-          for (int k = 0; k < pieces[j]; ++k) {
-            const double a = t0 + k * step, b = k + 1 == pieces[j] ? t1 : a + step;
-            sub_st[0] = sub_st[2];
-            sub_em[0] = sub_em[2];
-            sub_fw[0] = sub_fw[2];
-            for (int p = 1; p < 3; ++p) {
-              d::cell_fractions(o3, d3, p == 1 ? 0.5 * (a + b) : b, cell, frac);
-              const d::RecordInterpolation<Stride> interpolate_piece(frac);
-              interpolate_piece(records[j], slot, values);
-              if constexpr (kForward)
-                source.point(j, values, sub_st[p], sub_em[p], sub_fw[p]);
-              else
-                source.point(j, values, sub_st[p], sub_em[p]);
+          if constexpr (kSplits) {
+            // The steep part over equal pieces, each from its entry (the
+            // last one's exit), middle and exit, for this node alone, seen
+            // through the cell from its entry (the last piece's exit is the
+            // cell's).
+            double piece_st[3], piece_em[3], piece_fw[3] = {};
+            piece_st[2] = sigma_t[0][j];
+            piece_em[2] = steep_emissivity[0][j];
+            if constexpr (kForward) piece_fw[2] = forward[0][j];
+            const double step = (t1 - t0) / pieces[j];
+            double steep_light = 0.0, seen = 1.0;
+            for (int k = 0; k < pieces[j]; ++k) {
+              const double a = t0 + k * step, b = k + 1 == pieces[j] ? t1 : a + step;
+              piece_st[0] = piece_st[2];
+              piece_em[0] = piece_em[2];
+              piece_fw[0] = piece_fw[2];
+              for (int p = 1; p < 3; ++p) {
+                if (k + 1 == pieces[j] && p == 2) {  // the cell's own exit, read already
+                  piece_st[2] = sigma_t[2][j];
+                  piece_em[2] = steep_emissivity[2][j];
+                  if constexpr (kForward) piece_fw[2] = forward[2][j];
+                  continue;
+                }
+                d::cell_fractions(o3, d3, p == 1 ? 0.5 * (a + b) : b, cell, frac);
+                d::RecordInterpolation<Stride>(frac).template first<d::steep_reads<Source>()>(
+                    records[j], slot, values);
+                source.steep_point(j, values, piece_st[p], piece_em[p], piece_fw[p]);
+              }
+              // add_cell_forward's choice: σt − φ where φ is not zero.
+              const bool kept =
+                  kForward && (piece_fw[0] != 0.0 || piece_fw[1] != 0.0 || piece_fw[2] != 0.0);
+              const double scaled[3] = {piece_st[0] - piece_fw[0], piece_st[1] - piece_fw[1],
+                                        piece_st[2] - piece_fw[2]};
+              const CellEmission c = integrate_cell(b - a, kept ? scaled : piece_st, piece_em);
+              steep_light += seen * c.emitted;
+              seen *= c.transmittance;
             }
-            const double* pst[3] = {sub_st, sub_st + 1, sub_st + 2};
-            const double* pfw[3] = {sub_fw, sub_fw + 1, sub_fw + 2};
-            const double* pem[3] = {sub_em, sub_em + 1, sub_em + 2};
-            add(b - a, 1, pst, pfw, pem, j);
+            if constexpr (kForward)
+              radiance[j] += attenuation[j] * steep_light;
+            else
+              radiance[j] += transmittance[j] * steep_light;
+            // The rest over the whole cell.
+            const double smooth[3] = {emissivity[0][j] - steep_emissivity[0][j],
+                                      emissivity[1][j] - steep_emissivity[1][j],
+                                      emissivity[2][j] - steep_emissivity[2][j]};
+            const double* sm[3] = {smooth, smooth + 1, smooth + 2};
+            add(t1 - t0, 1, st, fw, sm, j);
           }
         }
       });

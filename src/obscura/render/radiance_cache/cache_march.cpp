@@ -93,8 +93,16 @@ class CacheInScattering {
   // Delta-M's f at a point of asymmetry g (CacheLight::forward_fraction).
   double forward_fraction(double g) const { return light_.forward_fraction(cache_clamped_g(g)); }
 
-  void add(const MarchCell&, int, double t, const double* sigma_s, const double* g,
+  void add(const MarchCell& cell, int p, double t, const double* sigma_s, const double* g,
            double* emissivity) {
+    add(cell, p, t, sigma_s, g, emissivity, nullptr);
+  }
+  // The same, and σs J_sun alone (the sun's light scattered once) into
+  // sun[j] where `sun` is given; with `only_sun`, that part alone is added.
+  void add(const MarchCell&, int, double t, const double* sigma_s, const double* g,
+           double* emissivity, double* sun, bool only_sun = false) {
+    if (sun)
+      for (int j = 0; j < nodes_; ++j) sun[j] = 0.0;
     bool scatters = false;
     for (int j = 0; j < nodes_; ++j) scatters = scatters || sigma_s[j] > 0.0;
     if (!scatters) return;
@@ -113,8 +121,13 @@ class CacheInScattering {
         for (int i = record::kTauSun; i < count; ++i) v[i] += static_cast<float>(w[c] * r[i]);
       }
       const double gj = cache_clamped_g(g[j]);
-      emissivity[j] += sigma_s[j] * light_.in_scattered(j, gj, light_.forward_fraction(gj),
-                                                        v.data() + record::kTauSun);
+      const float* light = v.data() + record::kTauSun;
+      double sun_j;
+      const double j_in =
+          only_sun ? (sun_j = light_.sun_scattered(j, gj, light))
+                   : light_.in_scattered(j, gj, light_.forward_fraction(gj), light, sun_j);
+      emissivity[j] += sigma_s[j] * j_in;
+      if (sun) sun[j] = sigma_s[j] * sun_j;
     }
   }
 

@@ -120,18 +120,31 @@ struct CacheLight {
   // truncated expansion dip below zero) averages out along the ray.
   OBSCURA_ALWAYS_INLINE OBSCURA_HOST_DEVICE double in_scattered(int j, double g, double f,
                                                                 const float* light) const {
-    static_assert(record::kSunVisibility == record::kTauSun + 1 &&
-                  record::kSh == record::kTauSun + 2);
-    const double tau = light[0], visibility = light[1];
-    double j_in = 0.0;
-    if (visibility > 0.0)
-      j_in += sun_irradiance[j] * cache_hg(g, mu_sun) * visibility * fast_exp(-tau);
+    double sun;
+    return in_scattered(j, g, f, light, sun);
+  }
+  // The same, and the sun's part of it alone in `sun` (what falls off as
+  // e^{−τ_sun}: sun_scattered).
+  OBSCURA_ALWAYS_INLINE OBSCURA_HOST_DEVICE double in_scattered(int j, double g, double f,
+                                                                const float* light,
+                                                                double& sun) const {
+    double j_in = sun = sun_scattered(j, g, light);
 #if OBSCURA_DEVICE_CODE
     j_in += hg_convolved(light + 2, y, g, sh_degree, f);
 #else
     j_in += convolution(light + 2, g, f);
 #endif
     return peak >= 0 ? j_in + light[peak] : j_in;
+  }
+  // The sun's light scattered once at the point: E_sun p_HG V_sun e^{−τ_sun}
+  // (`light` as in_scattered's; only its first two channels are read).
+  OBSCURA_ALWAYS_INLINE OBSCURA_HOST_DEVICE double sun_scattered(int j, double g,
+                                                                 const float* light) const {
+    static_assert(record::kSunVisibility == record::kTauSun + 1 &&
+                  record::kSh == record::kTauSun + 2);
+    const double tau = light[0], visibility = light[1];
+    return visibility > 0.0 ? sun_irradiance[j] * cache_hg(g, mu_sun) * visibility * fast_exp(-tau)
+                            : 0.0;
   }
 };
 
@@ -146,8 +159,12 @@ struct CacheSourceOf {
   const PlanckTableView* planck;  // per node j of the march
   const CacheLight& light;
   // The sun's optical depth: where it changes steeply across a cell, the
-  // march cuts the cell into pieces (lattice_view_march.h).
+  // march integrates the sun's light scattered once (sun_scattered) over
+  // pieces of the cell (lattice_view_march.h), reading σa, σs, T, σs g, τ_sun
+  // and V_sun there.
   static constexpr int kSteepChannel = record::kTauSun;
+  static constexpr int kSteepReads = 8;
+  static_assert(record::kSunVisibility < kSteepReads);
   static constexpr bool kKeepsForward = DeltaM;
 
   // Delta-M: σt, ε and the f σs kept along the ray.
@@ -158,23 +175,42 @@ struct CacheSourceOf {
   // With a forward peak: σt and ε.
   OBSCURA_HOST_DEVICE void point(int j, const float* v, double& sigma_t, double& emissivity) const
       requires(!DeltaM) {
-    double forward;
-    evaluate(j, v, sigma_t, emissivity, forward);
+    double forward, steep;
+    evaluate(j, v, sigma_t, emissivity, forward, steep);
+  }
+  // σt, ε, φ and ε's part from the sun's light scattered once, σs J_sun.
+  OBSCURA_HOST_DEVICE void split_point(int j, const float* v, double& sigma_t, double& emissivity,
+                                       double& forward, double& steep) const {
+    evaluate(j, v, sigma_t, emissivity, forward, steep);
+  }
+  // σt, σs J_sun and φ alone, from v's first kSteepReads floats.
+  OBSCURA_HOST_DEVICE void steep_point(int j, const float* v, double& sigma_t, double& steep,
+                                       double& forward) const {
+    const double sigma_a = v[record::kSigmaA], sigma_s = v[record::kSigmaS];
+    sigma_t = sigma_a + sigma_s;
+    steep = forward = 0.0;
+    if (sigma_s > 0.0) {
+      const double g = cache_clamped_g(v[record::kSigmaSG] / sigma_s);
+      forward = (DeltaM ? light.forward_fraction(g) : 0.0) * sigma_s;
+      steep = sigma_s * light.sun_scattered(j, g, v + record::kTauSun);
+    }
   }
 
  private:
   OBSCURA_ALWAYS_INLINE OBSCURA_HOST_DEVICE void evaluate(int j, const float* v, double& sigma_t,
-                                                          double& emissivity,
-                                                          double& forward) const {
+                                                          double& emissivity, double& forward,
+                                                          double& steep) const {
     const double sigma_a = v[record::kSigmaA], sigma_s = v[record::kSigmaS];
     sigma_t = sigma_a + sigma_s;
     emissivity = sigma_a != 0.0 ? sigma_a * planck[j](v[record::kTemperature]) : 0.0;
-    forward = 0.0;
+    forward = steep = 0.0;
     if (sigma_s > 0.0) {
       const double g = cache_clamped_g(v[record::kSigmaSG] / sigma_s);
       const double f = DeltaM ? light.forward_fraction(g) : 0.0;
       forward = f * sigma_s;
-      emissivity += sigma_s * light.in_scattered(j, g, f, v + record::kTauSun);
+      double sun;
+      emissivity += sigma_s * light.in_scattered(j, g, f, v + record::kTauSun, sun);
+      steep = sigma_s * sun;
     }
   }
 };
