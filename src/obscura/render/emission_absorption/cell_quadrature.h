@@ -131,6 +131,17 @@ OBSCURA_HOST_DEVICE inline void add_cell(double h, int count, const double* cons
 // e^{−∫(σt − φ)} so far), which the cell then attenuates, while
 // transmittance[j] takes the line's exact e^{−∫σt}. Where φ is zero at the
 // three points both equal add_cell's, bit for bit.
+//
+// integrate_seen is one node's cell of it: the emission integrated with
+// σt − φ where φ is not zero at the three points, else with σt.
+OBSCURA_ALWAYS_INLINE OBSCURA_HOST_DEVICE inline CellEmission integrate_seen(
+    double h, const double sigma_t[3], const double forward[3], const double emissivity[3]) {
+  const bool kept = forward[0] != 0.0 || forward[1] != 0.0 || forward[2] != 0.0;
+  const double scaled[3] = {sigma_t[0] - forward[0], sigma_t[1] - forward[1],
+                            sigma_t[2] - forward[2]};
+  return integrate_cell(h, kept ? scaled : sigma_t, emissivity);
+}
+
 OBSCURA_HOST_DEVICE inline void add_cell_forward(double h, int count,
                                                  const double* const sigma_t[3],
                                                  const double* const forward[3],
@@ -139,10 +150,10 @@ OBSCURA_HOST_DEVICE inline void add_cell_forward(double h, int count,
                                                  double* attenuation) {
   for (int j = 0; j < count; ++j) {
     const double st[3] = {sigma_t[0][j], sigma_t[1][j], sigma_t[2][j]};
+    const double fw[3] = {forward[0][j], forward[1][j], forward[2][j]};
     const double em[3] = {emissivity[0][j], emissivity[1][j], emissivity[2][j]};
-    const bool kept = forward[0][j] != 0.0 || forward[1][j] != 0.0 || forward[2][j] != 0.0;
-    const double scaled[3] = {st[0] - forward[0][j], st[1] - forward[1][j], st[2] - forward[2][j]};
-    const CellEmission c = integrate_cell(h, kept ? scaled : st, em);
+    const bool kept = fw[0] != 0.0 || fw[1] != 0.0 || fw[2] != 0.0;
+    const CellEmission c = integrate_seen(h, st, fw, em);
     radiance[j] += attenuation[j] * c.emitted;
     attenuation[j] *= c.transmittance;
     transmittance[j] *= kept ? cell_transmittance(h, st) : c.transmittance;

@@ -168,10 +168,7 @@ class EmissionMarcher final : public MarchVisitor {
         fw[p] = forward_at(ss, g[j]);
         em[p] = emissivity[j];
       }
-      // add_cell_forward's choice: σt − φ where φ is not zero.
-      const bool kept = fw[0] != 0.0 || fw[1] != 0.0 || fw[2] != 0.0;
-      const double scaled[3] = {st[0] - fw[0], st[1] - fw[1], st[2] - fw[2]};
-      const CellEmission c = integrate_cell(step, kept ? scaled : st, em);
+      const CellEmission c = integrate_seen(step, st, fw, em);
       sun_light += seen * c.emitted;
       seen *= c.transmittance;
     }

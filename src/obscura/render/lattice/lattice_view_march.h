@@ -427,9 +427,7 @@ OBSCURA_FLATTEN OBSCURA_HOST_DEVICE std::uint64_t march_lattice_ray(
   constexpr bool kForward = d::keeps_forward<Source>();
   constexpr int kSteep = d::steep_channel<Source>();
   constexpr bool kSplits = kSteep >= 0;
-  static_assert(!kSplits || d::steep_reads<Source>() % 4 == 0,
-                "a source with a steep channel "
-                "says what its steep part reads");
+  static_assert(!kSplits || d::steep_reads<Source>() % 4 == 0, "kSteepReads: groups of four");
   double values_at[6 + (kForward ? 3 : 0) + (kSplits ? 3 : 0)][MaxNodes];
   double* sigma_t[3] = {values_at[0], values_at[1], values_at[2]};
   double* emissivity[3] = {values_at[3], values_at[4], values_at[5]};
@@ -452,10 +450,10 @@ OBSCURA_FLATTEN OBSCURA_HOST_DEVICE std::uint64_t march_lattice_ray(
   const double o3[3] = {o.x, o.y, o.z}, d3[3] = {dir.x, dir.y, dir.z};
   // The steep channel's value at the cell's entry and exit, per node.
   double steep_at[2][MaxNodes] = {};
-  // σt and ε (and the steep channel) at lattice point o + t d of `cell` into
-  // slot p of the arrays.
-  // With `interpolate` at the point (RecordInterpolation, or FaceInterpolation
-  // where the point lies on a face of the cell).
+  // σt and ε (and the steep channel's value and ε's steep part) at a point
+  // into slot p of the arrays, the records read there by `interpolate`
+  // (RecordInterpolation, or FaceInterpolation where the point lies on a
+  // face of the cell).
   auto evaluate_with = [&](const auto& interpolate, const std::array<std::size_t, 8>& slot, int p,
                            double* steep) OBSCURA_ALWAYS_INLINE {
     for (int j = 0; j < n; ++j) {
@@ -473,6 +471,7 @@ OBSCURA_FLATTEN OBSCURA_HOST_DEVICE std::uint64_t march_lattice_ray(
         if (steep) steep[j] = values[kSteep];
     }
   };
+  // … at lattice point o + t d of `cell`.
   auto evaluate = [&](const std::array<int, 3>& cell, const std::array<std::size_t, 8>& slot,
                       double t, int p, double* steep) OBSCURA_ALWAYS_INLINE {
     d::cell_fractions(o3, d3, t, cell, frac);
@@ -577,12 +576,7 @@ OBSCURA_FLATTEN OBSCURA_HOST_DEVICE std::uint64_t march_lattice_ray(
                     records[j], slot, values);
                 source.steep_point(j, values, piece_st[p], piece_em[p], piece_fw[p]);
               }
-              // add_cell_forward's choice: σt − φ where φ is not zero.
-              const bool kept =
-                  kForward && (piece_fw[0] != 0.0 || piece_fw[1] != 0.0 || piece_fw[2] != 0.0);
-              const double scaled[3] = {piece_st[0] - piece_fw[0], piece_st[1] - piece_fw[1],
-                                        piece_st[2] - piece_fw[2]};
-              const CellEmission c = integrate_cell(b - a, kept ? scaled : piece_st, piece_em);
+              const CellEmission c = integrate_seen(b - a, piece_st, piece_fw, piece_em);
               steep_light += seen * c.emitted;
               seen *= c.transmittance;
             }
