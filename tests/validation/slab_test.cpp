@@ -105,7 +105,7 @@ void published_problems(RenderMethod method, double tolerance) {
     // cell of the default lattice is one optical depth thick and the grazing
     // sun's (μ0 0.1) depth climbs by 10 across it. The march integrates the
     // sun's light over pieces of such cells (R read +24 % with one parabola
-    // per cell, −2.0 % with everything read at the pieces, −0.22 % now).
+    // per cell; −0.22 % now).
     const double within = tolerance;
     const auto ref = published_row(p.slab);
     ASSERT_TRUE(ref) << "problem " << p.problem << " missing from " << kTable;
