@@ -33,7 +33,8 @@ constexpr int kMaxLatticeCells = 1 << 18;  // emission lattice (64³)
 // over the medium's box, to draw emission points from.
 class EmissionLattice {
  public:
-  EmissionLattice(const Medium& medium, const SpectralNode& node) : box_(medium.bounds()) {
+  EmissionLattice(const Medium& medium, const SpectralNode& node, int threads)
+      : box_(medium.bounds()) {
     const Vec3 e = box_.extent();
     const double volume = std::max(e.x * e.y * e.z, 1e-300);
     const double h = std::cbrt(volume / kMaxLatticeCells);
@@ -44,13 +45,13 @@ class EmissionLattice {
     const std::size_t count = static_cast<std::size_t>(n_[0]) * n_[1] * n_[2];
     std::vector<double> f(count, 0.0);
     const SpectralLerp lambda = node.lerp();
-    MediumPoint point;
     // Tiles of kTile³ cells whose centres' box the medium leaves empty
     // (its majorants) are zero without evaluating a point, as is B(T) where
     // σa is: the values are the same, and a cloud fills a small part of its
-    // box (docs/performance.md).
+    // box (docs/performance.md). Rows of tiles on the threads: each cell's
+    // value is its own, whatever the thread.
     constexpr int kTile = 8;
-    auto fill_tile = [&](const int lo[3], const int end[3]) {
+    auto fill_tile = [&](const int lo[3], const int end[3], MediumPoint& point) {
       for (int k = lo[2]; k < end[2]; ++k)
         for (int j = lo[1]; j < end[1]; ++j)
           for (int i = lo[0]; i < end[0]; ++i) {
@@ -60,16 +61,20 @@ class EmissionLattice {
               f[index(i, j, k)] = kFourPi * sigma_a * node.planck(point.temperature_k);
           }
     };
-    for (int tk = 0; tk < n_[2]; tk += kTile)
-      for (int tj = 0; tj < n_[1]; tj += kTile)
-        for (int ti = 0; ti < n_[0]; ti += kTile) {
-          const int lo[3] = {ti, tj, tk};
-          const int end[3] = {std::min(ti + kTile, n_[0]), std::min(tj + kTile, n_[1]),
-                              std::min(tk + kTile, n_[2])};
-          if (medium.may_be_nonzero(
-                  BBox3(center(ti, tj, tk), center(end[0] - 1, end[1] - 1, end[2] - 1))))
-            fill_tile(lo, end);
-        }
+    const int tiles_y = (n_[1] + kTile - 1) / kTile, tiles_z = (n_[2] + kTile - 1) / kTile;
+    parallel_for(static_cast<std::size_t>(tiles_y) * tiles_z, threads, [&](std::size_t row) {
+      const int tj = static_cast<int>(row % tiles_y) * kTile,
+                tk = static_cast<int>(row / tiles_y) * kTile;
+      MediumPoint point;
+      for (int ti = 0; ti < n_[0]; ti += kTile) {
+        const int lo[3] = {ti, tj, tk};
+        const int end[3] = {std::min(ti + kTile, n_[0]), std::min(tj + kTile, n_[1]),
+                            std::min(tk + kTile, n_[2])};
+        if (medium.may_be_nonzero(
+                BBox3(center(ti, tj, tk), center(end[0] - 1, end[1] - 1, end[2] - 1))))
+          fill_tile(lo, end, point);
+      }
+    });
     // Summed in the cells' order, whatever the tiles.
     double sum = 0;
     for (std::size_t c = 0; c < count; ++c) sum += f[c];
@@ -257,13 +262,13 @@ void trace_photon(const Scene& scene, const SpectralNode& node, const SpectralLe
 // The three sources of one spectral node and how a photon leaves each.
 class PhotonSources {
  public:
-  PhotonSources(const Scene& scene, const SpectralNode& node, double lateral_period_m)
+  PhotonSources(const Scene& scene, const SpectralNode& node, double lateral_period_m, int threads)
       : scene_(scene),
         node_(node),
         lambda_(node.lerp()),
         sphere_(photon_bounding_sphere(scene)),
         disc_area_(std::numbers::pi * sphere_.radius_m * sphere_.radius_m),
-        lattice_(*scene.medium, node),
+        lattice_(*scene.medium, node, threads),
         period_(lateral_period_m) {
     if (period_ > 0.0) {
       if (!scene.surfaces.empty())
@@ -503,7 +508,7 @@ TracedPhotons trace_photons(const Scene& scene, const SpectralNode& node, std::u
                             const PhotonTracingSettings& settings) {
   TracedPhotons out;
   if (!scene.medium || settings.photons <= 0) return out;
-  const PhotonSources sources(scene, node, settings.lateral_period_m);
+  const PhotonSources sources(scene, node, settings.lateral_period_m, settings.threads);
   const SpectralLerp lambda = node.lerp();
 
   // Share the photons out by power.
