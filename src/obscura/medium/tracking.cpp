@@ -60,9 +60,12 @@ std::optional<double> sample_free_flight(const Medium& medium, const Ray& ray, d
   // buffer, and a copy would be a heap allocation per flight (4 % of photon
   // tracing, docs/performance.md).
   medium.trace_majorants(ray, 0.0, t_max, std::ref(each_piece));
-  // The walk evaluated only the lerp's two samples: the whole point for the
-  // caller (the collision's albedo, phase function, every node's values).
-  if (hit) medium.coefficients_at(ray.at(*hit), scratch);
+  // The walk evaluated only the lerp's σa and σs; the caller's collision
+  // (its albedo, phase function and emission) reads the lerp's two samples'
+  // σa, σs, g and the temperature, the same values coefficients_at gives
+  // them, without the grid's other samples (half the work on the demo's
+  // four, docs/performance.md).
+  if (hit) medium.coefficients_of_samples(ray.at(*hit), lambda.sample0, lambda.sample1, scratch);
   return hit;
 }
 

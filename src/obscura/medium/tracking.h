@@ -32,7 +32,9 @@ struct SpectralLerp {
 // The first real collision along the ray in [0, t_max] (t in metres), or
 // nothing when the ray gets through (probability e^{−τ(0, t_max)}).
 // `scratch` avoids allocations in the inner loop; after a collision it holds
-// the medium's coefficients at the collision point.
+// the medium's coefficients at the collision point for lambda's two samples
+// and the temperature (Medium::coefficients_of_samples; the other samples
+// unspecified).
 std::optional<double> sample_free_flight(const Medium& medium, const Ray& ray, double t_max,
                                          const SpectralLerp& lambda, Rng& rng,
                                          MediumPoint& scratch);
