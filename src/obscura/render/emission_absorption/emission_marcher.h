@@ -11,8 +11,8 @@
 // An in-scattering source that lights the medium by a sun may tell the
 // sun's optical depth along the ray (sun_depths(t, tau): τ_sun per node at
 // distance t), the medium at a point (medium_at(t, point)) and the sun's part
-// of what it adds (add with a seventh argument, sun[j] = σs J_sun; with an
-// eighth, true, that part alone): where τ_sun climbs by more than 1 across a
+// of what it adds (add with a seventh argument, sun[j] = σs J_sun; add_sun,
+// that part alone): where τ_sun climbs by more than 1 across a
 // cell, that node's sun part is integrated over equal pieces of the cell
 // (cell_pieces, cell_quadrature.h), the medium and the sun's light read at
 // the pieces' points, and the rest of the emissivity over the whole cell, as
@@ -67,7 +67,7 @@ class EmissionMarcher final : public MarchVisitor {
         sigma_t_[0][j] = sigma_t_[2][j];
         emissivity_[0][j] = emissivity_[2][j];
         forward_[0][j] = forward_[2][j];
-        sun_[0][j] = sun_[2][j];
+        if constexpr (kCutsSteepCells) sun_[0][j] = sun_[2][j];
       }
     for (int p = reuse ? 1 : 0; p < 3; ++p) point(cell, p, t[p]);
     have_exit_ = true;
@@ -102,9 +102,11 @@ class EmissionMarcher final : public MarchVisitor {
 
  private:
   using NodeArray = std::array<double, kMaxSpectralNodes>;
-  static constexpr bool kCutsSteepCells = requires(InScattering & in, double* tau, MediumPoint& m) {
+  static constexpr bool kCutsSteepCells =
+      requires(InScattering & in, double* tau, MediumPoint& m, const MarchCell& cell) {
     in.sun_depths(0.0, tau);
     in.medium_at(0.0, m);
+    in.add_sun(cell, 0, 0.0, tau, tau, tau);
   };
   static constexpr bool kKeepsForward = requires(InScattering & in) { in.forward_fraction(0.0); };
 
@@ -164,7 +166,7 @@ class EmissionMarcher final : public MarchVisitor {
                               ss
                         : 0.0;
         emissivity[j] = 0.0;
-        in_scattering_.add(cell, p, t, sigma_s.data(), g.data(), emissivity.data(), nullptr, true);
+        in_scattering_.add_sun(cell, p, t, sigma_s.data(), g.data(), emissivity.data());
         fw[p] = forward_at(ss, g[j]);
         em[p] = emissivity[j];
       }

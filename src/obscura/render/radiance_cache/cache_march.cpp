@@ -93,14 +93,29 @@ class CacheInScattering {
   // Delta-M's f at a point of asymmetry g (CacheLight::forward_fraction).
   double forward_fraction(double g) const { return light_.forward_fraction(cache_clamped_g(g)); }
 
-  void add(const MarchCell& cell, int p, double t, const double* sigma_s, const double* g,
+  void add(const MarchCell&, int, double t, const double* sigma_s, const double* g,
            double* emissivity) {
-    add(cell, p, t, sigma_s, g, emissivity, nullptr);
+    add_light(t, sigma_s, g, emissivity, nullptr, false);
   }
   // The same, and σs J_sun alone (the sun's light scattered once) into
-  // sun[j] where `sun` is given; with `only_sun`, that part alone is added.
+  // sun[j].
   void add(const MarchCell&, int, double t, const double* sigma_s, const double* g,
-           double* emissivity, double* sun, bool only_sun = false) {
+           double* emissivity, double* sun) {
+    add_light(t, sigma_s, g, emissivity, sun, false);
+  }
+  // σs J_sun alone added to emissivity[j] (a cut cell's pieces,
+  // emission_marcher.h).
+  void add_sun(const MarchCell&, int, double t, const double* sigma_s, const double* g,
+               double* emissivity) {
+    add_light(t, sigma_s, g, emissivity, nullptr, true);
+  }
+
+ private:
+  // The light channels interpolated at distance t (only the sun's two with
+  // `only_sun`), σs J added to emissivity[j] (σs J_sun with `only_sun`), and
+  // σs J_sun into sun[j] where `sun` is given.
+  void add_light(double t, const double* sigma_s, const double* g, double* emissivity, double* sun,
+                 bool only_sun) {
     if (sun)
       for (int j = 0; j < nodes_; ++j) sun[j] = 0.0;
     bool scatters = false;
@@ -110,7 +125,8 @@ class CacheInScattering {
     std::array<double, 8> w;
     if (!cache_.lattice().corners(ray_.at(t), slot, w)) return;
     const LatticeVolume& volume = cache_.volume();
-    const int stride = volume.stride(), count = record::kSh + cache_.sh_count();
+    const int stride = volume.stride();
+    const int count = only_sun ? record::kSunVisibility + 1 : record::kSh + cache_.sh_count();
     for (int j = 0; j < nodes_; ++j) {
       if (!(sigma_s[j] > 0.0)) continue;
       std::array<float, record::kSh + kMaxShCoefficients> v{};
@@ -131,7 +147,6 @@ class CacheInScattering {
     }
   }
 
- private:
   const Medium& medium_;
   const RadianceCache& cache_;
   const CacheLight& light_;
