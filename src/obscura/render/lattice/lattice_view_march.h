@@ -130,6 +130,18 @@ OBSCURA_HOST_DEVICE inline void corner_slots(const std::array<std::size_t, 8>& f
   }
 }
 
+#if OBSCURA_DEVICE_CODE
+// out[0…3] = value(&float4::x … &float4::w): a device's per-lane sums of
+// float4 records (CUDA's float4 has no arithmetic of its own).
+template <class Value>
+__device__ inline void store_lanes(float* out, Value&& value) {
+  out[0] = value(&float4::x);
+  out[1] = value(&float4::y);
+  out[2] = value(&float4::z);
+  out[3] = value(&float4::w);
+}
+#endif
+
 // The trilinear interpolation, at fractions f (0…1 per axis) across the
 // cell whose corners' records (x fastest) are at `slot`, of the first Count
 // floats of records Stride floats apart, four floats at a time (GCC/Clang
@@ -208,14 +220,10 @@ OBSCURA_HOST_DEVICE inline void interpolate(const float* records,
     float4 r[8];
     for (int c = 0; c < 8; ++c)
       r[c] = __ldg(reinterpret_cast<const float4*>(records + slot[c] * Stride) + q);
-    auto sum = [&](float float4::*lane) {
+    store_lanes(out + 4 * q, [&](float float4::*lane) {
       return ((w[0] * r[0].*lane + w[1] * r[1].*lane) + (w[2] * r[2].*lane + w[3] * r[3].*lane)) +
              ((w[4] * r[4].*lane + w[5] * r[5].*lane) + (w[6] * r[6].*lane + w[7] * r[7].*lane));
-    };
-    out[4 * q] = sum(&float4::x);
-    out[4 * q + 1] = sum(&float4::y);
-    out[4 * q + 2] = sum(&float4::z);
-    out[4 * q + 3] = sum(&float4::w);
+    });
   }
 #else
   using Float4 = float __attribute__((vector_size(16)));
@@ -292,17 +300,13 @@ struct FaceInterpolation {
       float4 r[4];
       for (int k = 0; k < 4; ++k)
         r[k] = __ldg(reinterpret_cast<const float4*>(records + slot[corner[k]] * Stride) + q);
-      auto mix = [&](float float4::*lane) {
+      store_lanes(out + 4 * q, [&](float float4::*lane) {
         if constexpr (kByWeights)
           return (w[0] * r[0].*lane + w[1] * r[1].*lane) + (w[2] * r[2].*lane + w[3] * r[3].*lane);
         const float a = r[0].*lane + fu * (r[1].*lane - r[0].*lane);
         const float b = r[2].*lane + fu * (r[3].*lane - r[2].*lane);
         return a + fv * (b - a);
-      };
-      out[4 * q] = mix(&float4::x);
-      out[4 * q + 1] = mix(&float4::y);
-      out[4 * q + 2] = mix(&float4::z);
-      out[4 * q + 3] = mix(&float4::w);
+      });
     }
 #else
     using Float4 = float __attribute__((vector_size(16)));
