@@ -154,6 +154,9 @@ TEST(MarchJob, RecordLengthsMatchTheirKernels) {
   EXPECT_EQ(sh_degree_of_stride(12), 1);
   EXPECT_EQ(sh_degree_of_stride(16), 2);
   EXPECT_EQ(sh_degree_of_stride(24), 3);
+  // The CPU's degrees 4–6 have no device kernels.
+  for (const int count : {25, 36, 49})
+    EXPECT_EQ(sh_degree_of_stride(record::light_stride(count)), -1);
   EXPECT_EQ(sh_degree_of_stride(record::kMediumStride), -1);
   EXPECT_EQ(sh_degree_of_stride(20), -1);
   EXPECT_TRUE(march_supported(record::kMediumStride, MarchSource::kEmission));

@@ -88,6 +88,17 @@ TEST(RenderSettings, TheGpuTakesTheLatticeMethodsOnly) {
   e = parse_error({{"device", "gpu"}, {"emission_quadrature", "adaptive"}});
   EXPECT_EQ(e.field(), "/render/device");
   EXPECT_TRUE(testing::contains(e.detail(), "\"cell\"")) << e.what();
+  // The device's kernels hold spherical harmonics to degree 3, the CPU's to 6.
+  const nlohmann::json degree_4 = {{"sh_degree", 4}};
+  EXPECT_EQ(
+      parse({{"method", "radiance-cache"}, {"radiance_cache", degree_4}}).radiance_cache.sh_degree,
+      4);
+  e = parse_error({{"device", "gpu"}, {"method", "radiance-cache"}, {"radiance_cache", degree_4}});
+  EXPECT_EQ(e.field(), "/render/radiance_cache/sh_degree");
+  EXPECT_TRUE(testing::contains(e.detail(), "\"cpu\"")) << e.what();
+  e = parse_error({{"method", "radiance-cache"}, {"radiance_cache", {{"sh_degree", 7}}}});
+  EXPECT_EQ(e.field(), "/render/radiance_cache/sh_degree");
+  EXPECT_TRUE(testing::contains(e.detail(), "[1, 6]")) << e.what();
 }
 
 // The adaptive threshold refines a deterministic method's pixels to

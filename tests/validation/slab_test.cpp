@@ -159,18 +159,19 @@ TEST(SlabValidation, RadianceCacheConvergedDisortGrid) {
   converged_grid(RenderMethod::kRadianceCache, 0.02, {0.0, 0.5}, 108);
 }
 
-// The rows with g = 0.85, at spherical-harmonic degree 3 with delta-M
-// (cache_source.h; docs/validation.md). Measured, R: within 1.8 % but for
-// the three thin slabs (τ 0.1) under the diffuse sky, −4.5 to −5.7 %: their
-// reflectance is the sky's light scattered once, across the horizon, whose
-// step the harmonics cannot hold and delta-M's forward part does not carry
-// (held to 7 %); T within 0.4 %. At degree 2: R −0.03 to −9.1 %; before
-// delta-M −7 to +35 %, which these bounds catch.
+// The rows with g = 0.85, at spherical-harmonic degree 6 with delta-M
+// (cache_source.h; docs/validation.md), every one to the issue's 2 %.
+// Measured: R within 1.5 %, T within 0.5 %. At degree 3 the three thin
+// slabs (τ 0.1) under the diffuse sky read R −4.5 to −5.7 % (delta-M's
+// truncation of the sky's light scattered once across the horizon: −5.6 %
+// in a one-dimensional model of the same estimate, docs/validation.md), at
+// degree 2 down to −9.1 %; before delta-M −7 to +35 %. These bounds catch
+// all of them.
 TEST(SlabValidation, RadianceCacheDisortGridWithAPeakedPhaseFunction) {
   constexpr int kRows = 18;
   const double z = z_for(3 * kRows);
   ValidationOptions o = for_method(RenderMethod::kRadianceCache);
-  o.settings.radiance_cache.sh_degree = 3;
+  o.settings.radiance_cache.sh_degree = 6;
   int compared = 0;
   for (double albedo : {0.5, 0.9, 0.99})
     for (double tau : {0.1, 1.0, 4.0})
@@ -180,8 +181,7 @@ TEST(SlabValidation, RadianceCacheDisortGridWithAPeakedPhaseFunction) {
         ASSERT_TRUE(ref);
         ASSERT_EQ(ref->source.rfind("computed: DISORT", 0), 0u) << ref->source;
         const auto rows = validate_slab(slab, ref, o);
-        const bool sky_across_the_horizon = tau == 0.1 && incidence == SlabIncidence::kDiffuse;
-        EXPECT_TRUE(agrees(quantity(rows, "R"), ref->r, z, sky_across_the_horizon ? 0.07 : 0.02));
+        EXPECT_TRUE(agrees(quantity(rows, "R"), ref->r, z, 0.02));
         EXPECT_TRUE(agrees(quantity(rows, "T"), ref->t, z, 0.02));
         EXPECT_TRUE(agrees(quantity(rows, "T_direct"), ref->t_direct, z, 0.02));
         ++compared;

@@ -78,9 +78,10 @@ static_assert(offsetof(MarchJob, records) == sizeof(LatticeView) &&
 static_assert(sizeof(PlanckTableView) == 32);
 
 // The spherical-harmonic degree whose light records are Stride floats
-// (record::light_stride of degrees 0…3: 8, 12, 16, 24 floats); −1 for none.
+// (record::light_stride of degrees 0…3: 8, 12, 16, 24 floats); −1 for none,
+// and for the CPU's higher degrees, which a device's kernels do not hold.
 constexpr int sh_degree_of_stride(int stride) {
-  for (int degree = 0; degree <= kMaxShDegree; ++degree)
+  for (int degree = 0; degree <= kMaxDeviceShDegree; ++degree)
     if (record::light_stride(sh_coefficient_count(degree)) == stride) return degree;
   return -1;
 }

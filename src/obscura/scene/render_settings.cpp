@@ -200,6 +200,11 @@ void check_render_settings(const RenderSettings& s, const SettingError& error) {
           "device",
           "\"gpu\" integrates with \"emission_quadrature\": \"cell\" only: set "
           "\"device\": \"cpu\" for the adaptive quadrature (docs/gpu.md)");
+  require(s.device == RenderDevice::kCpu || s.method != RenderMethod::kRadianceCache ||
+              s.radiance_cache.sh_degree <= 3,
+          "radiance_cache/sh_degree",
+          "\"gpu\" holds degrees 1 to 3: set \"device\": \"cpu\" for degrees 4 to 6 "
+          "(docs/gpu.md)");
 
   const PathTracerSettings& pt = s.path_tracer;
   require(pt.russian_roulette_depth >= 1 && pt.russian_roulette_depth <= 1000,
@@ -226,7 +231,9 @@ void check_render_settings(const RenderSettings& s, const SettingError& error) {
   for (const auto& [band, count] : rc.photons_by_band)
     require(count >= 1 && count <= 2000000000LL, "radiance_cache/photons/" + band,
             "must lie in [1, 2e9] (photons launched per spectral node of the band)");
-  require(rc.sh_degree >= 1 && rc.sh_degree <= 3, "radiance_cache/sh_degree", "must be 1, 2 or 3");
+  // 6: kMaxShDegree (render/radiance_cache/spherical_harmonics.h); a CUDA
+  // device's kernels hold degrees up to 3 (kMaxDeviceShDegree).
+  require(rc.sh_degree >= 1 && rc.sh_degree <= 6, "radiance_cache/sh_degree", "must lie in [1, 6]");
   require(rc.kernel_radius_nodes >= 1 && rc.kernel_radius_nodes <= 4,
           "radiance_cache/kernel_radius_nodes", "must lie in [1, 4] lattice spacings");
   require(rc.lateral_period_m >= 0 && std::isfinite(rc.lateral_period_m),

@@ -85,7 +85,7 @@ struct RadianceCacheSettings {
   std::map<std::string, long long> photons_by_band;
   // The photons per node of band `band`'s nodes.
   long long photons(const Band& band) const;
-  int sh_degree = 2;  // spherical-harmonic degree of the incident radiance, 1–3
+  int sh_degree = 2;  // spherical-harmonic degree of the incident radiance, 1–6 (GPU: 1–3)
   // Splatting kernel half-width, in lattice spacings: a tent of that
   // half-width per axis (1: each photon to the 8 nodes around it).
   int kernel_radius_nodes = 1;

@@ -38,7 +38,7 @@ Scene sunlit_grid_scene(int sh_degree) {
 }
 
 TEST(CacheMarch, OverTheRecordsEqualsOverTheMediumsCells) {
-  for (const int degree : {0, 1, 2, 3}) {
+  for (const int degree : {0, 1, 2, 3, 4, 5, 6}) {
     const Scene scene = sunlit_grid_scene(degree);
     const FrameSpectra spectra = frame_spectra(scene);
     const DistinctNodes distinct = distinct_nodes(spectra);

@@ -137,7 +137,7 @@ TEST_P(FlightSplatShapes, EachNodeGetsTheKernelIntegralAlongTheFlight) {
     splat_flights(f.volume, 0, {flight}, 2, 2, sum);
     const std::vector<double> exact = brute_force(f, flight);
     std::array<double, kMaxShCoefficients> y;
-    spherical_harmonics(flight.dir(), y);
+    spherical_harmonics(flight.dir(), y, 2);
     double largest = 0.0;
     for (const double v : exact) largest = std::max(largest, v);
     ASSERT_GT(largest, 0.0);
@@ -310,7 +310,7 @@ TEST(FlightSplat, WideningGivesTheWideTentsIntegralAlongTheFlight) {
       EXPECT_EQ(0, std::memcmp(wide.data(), wide_threads.data(), wide.size() * sizeof(double)));
       const std::vector<double> exact = brute_force_wide(f, flight, r);
       std::array<double, kMaxShCoefficients> y;
-      spherical_harmonics(flight.dir(), y);
+      spherical_harmonics(flight.dir(), y, 2);
       double largest = 0.0;
       for (const double v : exact) largest = std::max(largest, v);
       ASSERT_GT(largest, 0.0);

@@ -46,17 +46,14 @@ std::uint64_t march_records(const LatticeVolume& volume, const int* record, int 
     return march_lattice<Stride>(volume, record, nodes, camera.ray, camera.t_end(), source,
                                  radiance, transmittance, attenuation);
   };
-  switch (volume.stride()) {
-    case record::light_stride(1):
-      return march.template operator()<record::light_stride(1)>();
-    case record::light_stride(4):
-      return march.template operator()<record::light_stride(4)>();
-    case record::light_stride(9):
-      return march.template operator()<record::light_stride(9)>();
-    default:
-      OBSCURA_CHECK(volume.stride() == record::light_stride(kMaxShCoefficients));
-      return march.template operator()<record::light_stride(kMaxShCoefficients)>();
-  }
+  int degree = 0;
+  while (degree < kMaxShDegree &&
+         record::light_stride(sh_coefficient_count(degree)) != volume.stride())
+    ++degree;
+  OBSCURA_CHECK(record::light_stride(sh_coefficient_count(degree)) == volume.stride());
+  return with_sh_count(degree, [&](auto count) {
+    return march.template operator()<record::light_stride(decltype(count)::value)>();
+  });
 }
 
 // σs J from the cache at a point of the medium's march (emission_marcher.h's
@@ -129,7 +126,7 @@ class CacheInScattering {
     const int count = only_sun ? record::kSunVisibility + 1 : record::kSh + cache_.sh_count();
     for (int j = 0; j < nodes_; ++j) {
       if (!(sigma_s[j] > 0.0)) continue;
-      std::array<float, record::kSh + kMaxShCoefficients> v{};
+      std::array<float, record::kSh + HgConvolution::readable(kMaxShDegree)> v{};
       const float* records = volume.records(record_[j]);
       for (int c = 0; c < 8; ++c) {
         if (slot[c] == NodeLattice::kNoSlot || w[c] == 0.0) continue;

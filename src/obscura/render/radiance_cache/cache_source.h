@@ -52,7 +52,11 @@ class HgBeyondDegree {
   OBSCURA_HOST_DEVICE HgBeyondDegree(double mu, int degree)
       : mu_(mu),
         p_{1.0, mu, 0.5 * (3.0 * mu * mu - 1.0), 0.5 * mu * (5.0 * mu * mu - 3.0)},
-        degree_(degree < 3 ? degree : 3) {}
+        degree_(degree < kMaxShDegree ? degree : kMaxShDegree) {
+    // Bonnet's recurrence l P_l = (2l − 1) μ P_{l−1} − (l − 1) P_{l−2}.
+    for (int l = 4; l <= degree_; ++l)
+      p_[l] = ((2 * l - 1) * mu * p_[l - 1] - (l - 1) * p_[l - 2]) / l;
+  }
 
   OBSCURA_HOST_DEVICE double operator()(double g) const {
     double kept = 0.0, g_l = 1.0;
@@ -65,7 +69,7 @@ class HgBeyondDegree {
 
  private:
   double mu_ = 0.0;
-  double p_[4] = {};  // P_0 … P_3 at μ
+  double p_[kMaxShDegree + 1] = {};  // P_0 … P_degree at μ
   int degree_ = 0;
 };
 
@@ -96,7 +100,7 @@ struct CacheLight {
         sun_irradiance(irradiance),
         sh_degree(degree),
         peak(peak_channel) {
-    spherical_harmonics(-direction, y);
+    spherical_harmonics(-direction, y, degree);
 #if !OBSCURA_DEVICE_CODE
     convolution = HgConvolution(y, degree);
 #endif

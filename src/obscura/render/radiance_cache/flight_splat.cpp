@@ -201,7 +201,7 @@ void splat_flight(const PhotonFlight& flight, const LatticeFlight& f,
                   int n0, int n1, const float* scattering, double inv_volume, int sh_degree,
                   const std::vector<Vec3>& peak_views, CellCorners& cell_corners, SlabSums& sums) {
   std::array<double, kMaxShCoefficients> y;
-  spherical_harmonics(flight.dir(), y);
+  spherical_harmonics(flight.dir(), y, sh_degree);
   // The harmonics in floats, added to a node four at a time (the flush
   // below is the splat's commonest arithmetic; GCC leaves the plain loop
   // scalar).
@@ -361,17 +361,8 @@ void dispatch_splat(int sh_degree, int peaks, F&& f) {
         return f(count, std::integral_constant<int, 2>{});
     }
   };
-  switch (sh_degree) {
-    case 0:
-      return with_peaks(std::integral_constant<int, 1>{});
-    case 1:
-      return with_peaks(std::integral_constant<int, 4>{});
-    case 2:
-      return with_peaks(std::integral_constant<int, 9>{});
-    default:
-      OBSCURA_CHECK(sh_degree == kMaxShDegree);
-      return with_peaks(std::integral_constant<int, kMaxShCoefficients>{});
-  }
+  OBSCURA_CHECK(sh_degree >= 0 && sh_degree <= kMaxShDegree);
+  return with_sh_count(sh_degree, with_peaks);
 }
 
 }  // namespace

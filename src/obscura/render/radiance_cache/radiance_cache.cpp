@@ -538,7 +538,7 @@ void RadianceCache::splat(const Scene& scene, const SpectralNode& node, int inde
   // Photons in their stored order: the sums do not depend on the thread count.
   for (const Photon& p : traced.photons) {
     const Vec3 u = lattice_.to_lattice(p.position());
-    spherical_harmonics(p.dir(), y);
+    spherical_harmonics(p.dir(), y, sh_degree_);
     const int i0 = static_cast<int>(std::floor(u.x)) - r + 1,
               j0 = static_cast<int>(std::floor(u.y)) - r + 1,
               k0 = static_cast<int>(std::floor(u.z)) - r + 1;

@@ -1,5 +1,5 @@
 #pragma once
-// Real spherical harmonics up to degree 3, orthonormal on the sphere
+// Real spherical harmonics up to degree 6 (3 in CUDA device code), orthonormal on the sphere
 // (∫ Y_lm Y_l'm' dω = δ_ll' δ_mm'), in the usual order
 // (l, m) = (0,0), (1,−1), (1,0), (1,1), (2,−2), …, index l² + l + m. The
 // radiance cache stores the incident radiance at a point as
@@ -11,21 +11,93 @@
 // (docs/physics.md, "The radiance cache"). Both run on a CUDA device too
 // (core/host_device.h).
 #include <array>
+#include <cmath>
 #include <cstring>
+#include <numbers>
+#include <type_traits>
+#include <utility>
 
 #include "obscura/core/host_device.h"
 #include "obscura/core/vec3.h"
 
 namespace obscura {
 
-inline constexpr int kMaxShDegree = 3;
+// The CPU's radiance cache goes to degree 6, which a phase function as
+// peaked as g = 0.85 needs where a ray has no forward peak (delta-M's
+// truncation, docs/validation.md); a CUDA device's kernels stop at degree 3
+// (their records and harmonics stay in registers; docs/gpu.md).
+inline constexpr int kMaxDeviceShDegree = 3;
+#if OBSCURA_DEVICE_CODE
+inline constexpr int kMaxShDegree = kMaxDeviceShDegree;
+#else
+inline constexpr int kMaxShDegree = 6;
+#endif
 inline constexpr int kMaxShCoefficients = (kMaxShDegree + 1) * (kMaxShDegree + 1);
 
 constexpr int sh_coefficient_count(int degree) { return (degree + 1) * (degree + 1); }
 
-// Y_lm(d) for l ≤ kMaxShDegree, d a unit vector (x, y, z), into y[l² + l + m].
+#if !OBSCURA_DEVICE_CODE
+// f(std::integral_constant<int, sh_coefficient_count(degree)>{}) for a degree
+// in [0, kMaxShDegree] (checked by the caller): the CPU's one place that turns
+// a degree into the harmonics' count as a template argument, so that the
+// loops over them unroll.
+template <int Degree = 0, class F>
+decltype(auto) with_sh_count(int degree, F&& f) {
+  if constexpr (Degree < kMaxShDegree)
+    if (degree != Degree) return with_sh_count<Degree + 1>(degree, std::forward<F>(f));
+  return f(std::integral_constant<int, sh_coefficient_count(Degree)>{});
+}
+#endif
+
+#if !OBSCURA_DEVICE_CODE
+// Y_lm(d) for 4 ≤ l ≤ degree into y[l² + l + m], in the form the explicit
+// degrees below take: Y_l0 = K_l0 Q_l0(z), Y_l±m = √2 K_lm Q_lm(z) times the
+// real (+m) or imaginary (−m) part of (x + i y)^m, m > 0, where Q_lm is the
+// m-th derivative of the Legendre polynomial P_l (so Q_lm (1 − z²)^{m/2} is
+// the associated Legendre function without the Condon–Shortley phase) and
+// K_lm = √((2l + 1)/(4π) (l − m)!/(l + m)!). Q_lm by the recurrence
+// (l − m) Q_lm = (2l − 1) z Q_{l−1,m} − (l + m − 1) Q_{l−2,m} from
+// Q_mm = (2m − 1)!! (Press et al., Numerical Recipes, §6.7).
+inline void spherical_harmonics_above_degree_3(double x, double yy, double z, int degree,
+                                               std::array<double, kMaxShCoefficients>& y) {
+  double re[kMaxShDegree + 1], im[kMaxShDegree + 1];  // (x + i y)^m
+  re[0] = 1.0;
+  im[0] = 0.0;
+  for (int m = 1; m <= degree; ++m) {
+    re[m] = re[m - 1] * x - im[m - 1] * yy;
+    im[m] = im[m - 1] * x + re[m - 1] * yy;
+  }
+  for (int m = 0; m <= degree; ++m) {
+    double q_mm = 1.0;  // (2m − 1)!!
+    for (int k = 1; k <= m; ++k) q_mm *= 2 * k - 1;
+    double q_prev = 0.0, q = q_mm;  // Q_{l−1,m}, Q_lm
+    double ratio = 1.0;             // (l − m)!/(l + m)!
+    for (int k = 1; k <= 2 * m; ++k) ratio /= k;
+    for (int l = m; l <= degree; ++l) {
+      if (l > m) {
+        const double next = ((2 * l - 1) * z * q - (l + m - 1) * q_prev) / (l - m);
+        q_prev = q;
+        q = next;
+        ratio *= static_cast<double>(l - m) / (l + m);
+      }
+      if (l < 4) continue;
+      const double k_lm = std::sqrt((2 * l + 1) * ratio * (0.25 * std::numbers::inv_pi));
+      if (m == 0) {
+        y[l * l + l] = k_lm * q;
+      } else {
+        y[l * l + l + m] = std::numbers::sqrt2 * k_lm * q * re[m];
+        y[l * l + l - m] = std::numbers::sqrt2 * k_lm * q * im[m];
+      }
+    }
+  }
+}
+#endif
+
+// Y_lm(d) for l ≤ max(degree, 3), d a unit vector (x, y, z), into
+// y[l² + l + m]; degree ≤ kMaxShDegree.
 OBSCURA_HOST_DEVICE inline void spherical_harmonics(const Vec3& d,
-                                                    std::array<double, kMaxShCoefficients>& y) {
+                                                    std::array<double, kMaxShCoefficients>& y,
+                                                    int degree) {
   const double x = d.x, yy = d.y, z = d.z;
   // Normalisation constants of the real harmonics (Sloan 2008, "Stupid
   // Spherical Harmonics Tricks", appendix).
@@ -55,6 +127,11 @@ OBSCURA_HOST_DEVICE inline void spherical_harmonics(const Vec3& d,
   y[13] = k3c * x * (5 * z * z - 1);
   y[14] = k3e * z * (x * x - yy * yy);
   y[15] = k3a * x * (x * x - 3 * yy * yy);
+#if !OBSCURA_DEVICE_CODE
+  if (degree > 3) spherical_harmonics_above_degree_3(x, yy, z, degree, y);
+#else
+  (void)degree;
+#endif
 }
 
 // ∫ p_HG(ω'·ω) L(ω') dω' from L's coefficients `c` (degree ≤ `degree`) and
@@ -80,7 +157,8 @@ OBSCURA_HOST_DEVICE inline double hg_convolved(const float* c,
 // harmonics y) is fixed: Σ_i g^{l(i)} y_i c_i, four coefficients at a time in
 // float, each group of four times its lanes' powers of g (coefficient i has
 // degree l(i) = ⌊√i⌋: lanes 0–3 hold degrees 0, 1, 1, 1; 4–7 degree 2; 8–11
-// degrees 2, 3, 3, 3; 12–15 degree 3). What the CPU's camera march spends on
+// degrees 2, 3, 3, 3; 12–15 degree 3; above degree 3 the lanes' powers are
+// gathered from a table of the degrees). What the CPU's camera march spends on
 // the cache's multiple scattering (docs/performance.md); a CUDA device keeps
 // hg_convolved. Agrees with it to float rounding (relative 1e-6 of the terms'
 // magnitudes; tests/render/radiance_cache/spherical_harmonics_test.cpp).
@@ -104,6 +182,8 @@ class HgConvolution {
     const float f1 = static_cast<float>(f);
     const Float4 power[4] = {Float4{1.0f, g1, g1, g1} - f1, Float4{g2, g2, g2, g2} - f1,
                              Float4{g2, g3, g3, g3} - f1, Float4{g3, g3, g3, g3} - f1};
+    if (groups_ > 4) [[unlikely]]
+      return above_degree_3(c, g1, f1);
     Float4 sum = {};
     for (int q = 0; q < groups_; ++q) {
       Float4 y_q, c_q;
@@ -115,7 +195,37 @@ class HgConvolution {
   }
 
  private:
-  float y_[kMaxShCoefficients] = {};  // y_i, 0 beyond the degree's coefficients
+  // The same sum for degrees above 3 (more than four groups); kept out of
+  // line, so that the march at the usual degrees inlines only the above.
+  [[gnu::noinline, gnu::cold]] double above_degree_3(const float* c, float g1, float f1) const {
+    using Float4 = float __attribute__((vector_size(16)));
+    float power[kMaxShDegree + 1];
+    power[0] = 1.0f;
+    for (int l = 1; l <= kMaxShDegree; ++l) power[l] = power[l - 1] * g1;
+    Float4 sum = {};
+    for (int q = 0; q < groups_; ++q) {
+      const unsigned char* l = kDegreeOf.data() + 4 * q;
+      const Float4 p = Float4{power[l[0]], power[l[1]], power[l[2]], power[l[3]]} - f1;
+      Float4 y_q, c_q;
+      std::memcpy(&y_q, y_ + 4 * q, sizeof y_q);
+      std::memcpy(&c_q, c + 4 * q, sizeof c_q);
+      sum += p * y_q * c_q;
+    }
+    return static_cast<double>((sum[0] + sum[1]) + (sum[2] + sum[3]));
+  }
+
+  static constexpr int kReadableMax = (kMaxShCoefficients + 3) / 4 * 4;
+  // Coefficient i's degree ⌊√i⌋ (kMaxShDegree in the last group's padding).
+  static constexpr std::array<unsigned char, kReadableMax> kDegreeOf = [] {
+    std::array<unsigned char, kReadableMax> degree{};
+    for (int i = 0; i < kReadableMax; ++i) {
+      int l = 0;
+      while (l < kMaxShDegree && (l + 1) * (l + 1) <= i) ++l;
+      degree[i] = static_cast<unsigned char>(l);
+    }
+    return degree;
+  }();
+  float y_[kReadableMax] = {};  // y_i, 0 beyond the degree's coefficients
   int groups_ = 0;
 };
 #endif
