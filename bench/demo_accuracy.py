@@ -18,7 +18,8 @@ quadrature. Nothing is asserted (docs/performance.md, docs/validation.md).
         [--method radiance-cache|photonmap] [--photons N] [--photons-by-band BAND=N,...]
         [--spp 4] [--adaptive-threshold T] [--sh-degree D]
         [--estimate tracks|collisions]
-        [--voxel M] [--kernel-radius R] [--seed N] [--no-sensor-peaks] [--save F]
+        [--voxel M] [--kernel-radius R] [--seed N] [--nodes-by-band BAND=N,...]
+        [--no-sensor-peaks] [--save F]
 """
 import argparse
 import pathlib
@@ -66,6 +67,9 @@ def main():
     parser.add_argument("--kernel-radius", type=int, default=0,
                         help="radiance cache: the splat's tent half-width, lattice spacings")
     parser.add_argument("--seed", type=int, default=0, help="the method's seed (default: the scene's)")
+    parser.add_argument("--nodes-by-band", default="",
+                        help="BAND=N[,BAND=N...]: the method's spectral nodes of those bands "
+                             "(/render/spectral_nodes_per_band; the reference keeps the scene's)")
     parser.add_argument("--no-sensor-peaks", action="store_true",
                         help="radiance cache: the harmonics alone, no forward peak towards the sensors")
     parser.add_argument("--threads", type=int, default=0)
@@ -115,6 +119,13 @@ def main():
                          seconds=reference_s)
 
         extra = {}
+        if args.nodes_by_band:
+            nodes = render.get("spectral_nodes_per_band", 8)
+            nodes = dict(nodes) if isinstance(nodes, dict) else {"*": nodes}
+            for item in args.nodes_by_band.split(","):
+                band, n = item.split("=")
+                nodes[band] = int(n)
+            extra["spectral_nodes_per_band"] = nodes
         if args.method == "radiance-cache":
             cache = {}
             if args.photons > 0:
@@ -135,10 +146,10 @@ def main():
                 cache["kernel_radius_nodes"] = args.kernel_radius
             if args.no_sensor_peaks:
                 cache["sensor_peaks"] = False
-            extra = {"radiance_cache": cache}
+            extra["radiance_cache"] = cache
         if args.method == "photonmap":
             # The demo's settings until 2026-12-07 (docs/demo.md): k = 30.
-            extra = {"photon_map": {"photons": args.photons or 200000, "k": 30}}
+            extra["photon_map"] = {"photons": args.photons or 200000, "k": 30}
         if args.seed:
             extra["seed"] = args.seed
         if args.adaptive_threshold > 0:
