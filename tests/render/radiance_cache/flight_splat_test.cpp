@@ -145,6 +145,15 @@ TEST_P(FlightSplatShapes, EachNodeGetsTheKernelIntegralAlongTheFlight) {
       for (int l = 0; l < 9; ++l)
         ASSERT_NEAR(sum[slot * 9 + l], 2.5 * y[l] * exact[slot], 2e-3 * 2.5 * largest)
             << "flight " << n << " slot " << slot << " coefficient " << l;
+    // At degree 6 (49 harmonics: twelve groups of four and one more) each
+    // harmonic of the flight's direction takes the same integral.
+    std::vector<double> sum_6(f.lattice.slot_count() * 49, 0.0);
+    splat_flights(f.volume, 0, {flight}, 6, 2, sum_6);
+    spherical_harmonics(flight.dir(), y, 6);
+    for (std::size_t slot = 0; slot < f.lattice.slot_count(); ++slot)
+      for (int l = 0; l < 49; ++l)
+        ASSERT_NEAR(sum_6[slot * 49 + l], 2.5 * y[l] * exact[slot], 2e-3 * 2.5 * largest)
+            << "degree 6, flight " << n << " slot " << slot << " coefficient " << l;
     // With two sensors' directions, one near the flight's (the forward
     // peak) and one across it: two more sums per slot, the harmonics' the
     // same. On a grid of one g (q then constant along the flight; with g
