@@ -75,7 +75,9 @@ void add_options(CLI::App* cmd, ValidateOptions* o) {
                   "radiance-cache: lattice spacing, m (0: the medium's largest side / 32)")
       ->capture_default_str();
   cmd->add_option("--sh-degree", rc.sh_degree,
-                  "radiance-cache: spherical-harmonic degree of the incident radiance, 1-6")
+                  "radiance-cache: spherical-harmonic degree of the incident radiance, 1-6 (6 for "
+                  "a phase function as peaked as g = 0.85)")
+      ->check(CLI::Range(1, 6))
       ->capture_default_str();
   cmd->add_option("--kernel", rc.kernel_radius_nodes,
                   "radiance-cache: splatting kernel half-width, lattice spacings")

@@ -83,6 +83,9 @@ TEST_F(ValidateTest, BadParametersAreNamed) {
   r = testing::run_cli("validate furnace --samples 1", dir_);
   EXPECT_NE(r.status, 0);
   EXPECT_NE(r.err.find("--samples"), std::string::npos) << r.err;
+  r = testing::run_cli("validate slab --method radiance-cache --sh-degree 7", dir_);
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.err.find("--sh-degree"), std::string::npos) << r.err;
 }
 
 }  // namespace
