@@ -471,7 +471,7 @@ OBSCURA_FLATTEN OBSCURA_HOST_DEVICE std::uint64_t march_lattice_ray(
       } else {
         source.point(j, values, sigma_t[p][j], emissivity[p][j]);
       }
-      if constexpr (kSteep >= 0)
+      if constexpr (kSplits)
         if (steep) steep[j] = values[kSteep];
     }
   };
@@ -517,7 +517,7 @@ OBSCURA_FLATTEN OBSCURA_HOST_DEVICE std::uint64_t march_lattice_ray(
         const bool reuse = t0 == previous_end;
         if (reuse) {
           keep_exit_as_entry();
-          if constexpr (kSteep >= 0)
+          if constexpr (kSplits)
             for (int j = 0; j < n; ++j) steep_at[0][j] = steep_at[1][j];
         } else {
           evaluate(cell, slot, t0, 0, steep_at[0]);
@@ -537,7 +537,7 @@ OBSCURA_FLATTEN OBSCURA_HOST_DEVICE std::uint64_t march_lattice_ray(
         int pieces[MaxNodes];
         for (int j = 0; j < n; ++j) {
           pieces[j] = 1;
-          if constexpr (kSteep >= 0) pieces[j] = cell_pieces(steep_at[1][j] - steep_at[0][j]);
+          if constexpr (kSplits) pieces[j] = cell_pieces(steep_at[1][j] - steep_at[0][j]);
           any_cut = any_cut || pieces[j] > 1;
         }
         if (!any_cut) {

@@ -37,22 +37,16 @@ class RayLight {
   CacheLight light_;
 };
 
-// The lattice march over the volume's records of its stride.
+// The lattice march over the cache's records, whose stride its degree gives.
 template <class Source>
-std::uint64_t march_records(const LatticeVolume& volume, const int* record, int nodes,
+std::uint64_t march_records(const RadianceCache& cache, const int* record, int nodes,
                             const CameraRay& camera, const Source& source, double* radiance,
                             double* transmittance, double* attenuation) {
-  auto march = [&]<int Stride>() {
-    return march_lattice<Stride>(volume, record, nodes, camera.ray, camera.t_end(), source,
-                                 radiance, transmittance, attenuation);
-  };
-  int degree = 0;
-  while (degree < kMaxShDegree &&
-         record::light_stride(sh_coefficient_count(degree)) != volume.stride())
-    ++degree;
-  OBSCURA_CHECK(record::light_stride(sh_coefficient_count(degree)) == volume.stride());
-  return with_sh_count(degree, [&](auto count) {
-    return march.template operator()<record::light_stride(decltype(count)::value)>();
+  return with_sh_count(cache.sh_degree(), [&](auto count) {
+    constexpr int kStride = record::light_stride(decltype(count)::value);
+    OBSCURA_CHECK(cache.volume().stride() == kStride);
+    return march_lattice<kStride>(cache.volume(), record, nodes, camera.ray, camera.t_end(), source,
+                                  radiance, transmittance, attenuation);
   });
 }
 
@@ -135,9 +129,9 @@ class CacheInScattering {
       }
       const double gj = cache_clamped_g(g[j]);
       const float* light = v.data() + record::kTauSun;
-      double sun_j;
+      double sun_j = 0.0;  // the sun's part of J (read where `sun` is given)
       const double j_in =
-          only_sun ? (sun_j = light_.sun_scattered(j, gj, light))
+          only_sun ? light_.sun_scattered(j, gj, light)
                    : light_.in_scattered(j, gj, light_.forward_fraction(gj), light, sun_j);
       emissivity[j] += sigma_s[j] * j_in;
       if (sun) sun[j] = sigma_s[j] * sun_j;
@@ -161,14 +155,13 @@ std::uint64_t march_cache_lattice(const Scene& scene, const RadianceCache& cache
   const RayLight light(scene, cache, camera.ray, nodes, peak_channel);
   const int n = static_cast<int>(nodes.size());
   if (peak_channel < 0)
-    return march_records(cache.volume(), record, n, camera,
-                         DeltaMCacheSource{light.planck(), light.light()}, radiance, transmittance,
-                         attenuation);
+    return march_records(cache, record, n, camera, DeltaMCacheSource{light.planck(), light.light()},
+                         radiance, transmittance, attenuation);
   // The harmonics and the peak hold the whole phase function: the
   // background is seen through the transmittance.
   const std::uint64_t cells =
-      march_records(cache.volume(), record, n, camera, CacheSource{light.planck(), light.light()},
-                    radiance, transmittance, nullptr);
+      march_records(cache, record, n, camera, CacheSource{light.planck(), light.light()}, radiance,
+                    transmittance, nullptr);
   for (int j = 0; j < n; ++j) attenuation[j] = transmittance[j];
   return cells;
 }

@@ -178,12 +178,12 @@ class HgConvolution {
   // With f: Σ_i (g^{l(i)} − f) y_i c_i (hg_convolved's f).
   double operator()(const float* c, double g, double f = 0.0) const {
     using Float4 = float __attribute__((vector_size(16)));
-    const float g1 = static_cast<float>(g), g2 = g1 * g1, g3 = g2 * g1;
-    const float f1 = static_cast<float>(f);
-    const Float4 power[4] = {Float4{1.0f, g1, g1, g1} - f1, Float4{g2, g2, g2, g2} - f1,
-                             Float4{g2, g3, g3, g3} - f1, Float4{g3, g3, g3, g3} - f1};
+    const float g1 = static_cast<float>(g), f1 = static_cast<float>(f);
     if (groups_ > 4) [[unlikely]]
       return above_degree_3(c, g1, f1);
+    const float g2 = g1 * g1, g3 = g2 * g1;
+    const Float4 power[4] = {Float4{1.0f, g1, g1, g1} - f1, Float4{g2, g2, g2, g2} - f1,
+                             Float4{g2, g3, g3, g3} - f1, Float4{g3, g3, g3, g3} - f1};
     Float4 sum = {};
     for (int q = 0; q < groups_; ++q) {
       Float4 y_q, c_q;
