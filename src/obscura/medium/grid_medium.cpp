@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 
+#include "obscura/core/host_device.h"
 #include "obscura/medium/lattice_walker.h"
 
 namespace obscura {
@@ -152,8 +153,9 @@ void corner_weight_cubics(const std::array<double, 3>& alpha, const std::array<d
 // their weights (corner c = x + 2y + 4z, each weight the product x·y·z of its
 // axes' factors in that order); false outside the grid's box (plus the outer
 // half voxels).
-bool trilinear_corners(const VoxelGrid& g, const Vec3& u, std::array<std::size_t, 8>& idx,
-                       std::array<double, 8>& w) {
+OBSCURA_ALWAYS_INLINE inline bool trilinear_corners(const VoxelGrid& g, const Vec3& u,
+                                                    std::array<std::size_t, 8>& idx,
+                                                    std::array<double, 8>& w) {
   const GridDims& d = g.dims();
   if (!(u.x >= -0.5 && u.x <= d.nx - 0.5 && u.y >= -0.5 && u.y <= d.ny - 0.5 && u.z >= -0.5 &&
         u.z <= d.nz - 0.5))
@@ -220,10 +222,9 @@ double trilinear_temperature(const GridChannels& ch, const std::array<std::size_
   return t;
 }
 
-// Spectral samples `first` and `second` at world point p into `out`: with
-// kWhole σa, σs, g and the temperature (coefficients_of_samples), else σa
-// and σs alone (extinction_of_samples).
-template <bool kWhole>
+// Spectral samples `first` and `second` at world point p into `out` (σa,
+// σs, g) and the temperature, the corners summed in one pass, each sum in
+// sample_sums' order (so the same bits as coefficients_at).
 void samples_at(const VoxelGrid& g, const GridChannels& ch, const Vec3& p, int first, int second,
                 MediumPoint& out) {
   const std::size_t ns = static_cast<std::size_t>(g.spectral_count());
@@ -232,20 +233,41 @@ void samples_at(const VoxelGrid& g, const GridChannels& ch, const Vec3& p, int f
     out.sigma_s.resize(ns);
     out.g.resize(ns);
   }
+  const std::size_t s0 = static_cast<std::size_t>(first), s1 = static_cast<std::size_t>(second);
   std::array<std::size_t, 8> idx;
   std::array<double, 8> w;
   if (!trilinear_corners(g, g.placement().world_to_index(p), idx, w)) {
-    for (const int s : {first, second}) {
-      out.sigma_a[static_cast<std::size_t>(s)] = 0.0;
-      out.sigma_s[static_cast<std::size_t>(s)] = 0.0;
-      out.g[static_cast<std::size_t>(s)] = 0.0;
+    for (const std::size_t s : {s0, s1}) {
+      out.sigma_a[s] = 0.0;
+      out.sigma_s[s] = 0.0;
+      out.g[s] = 0.0;
     }
     out.temperature_k = 0.0;
     return;
   }
-  sample_coefficients<kWhole>(ch, first, idx, w, out);
-  if (second != first) sample_coefficients<kWhole>(ch, second, idx, w, out);
-  if constexpr (kWhole) out.temperature_k = trilinear_temperature(ch, idx, w);
+  const float *a0 = ch.sigma_a[s0], *sc0 = ch.sigma_s[s0], *g0 = ch.g[s0];
+  const float *a1 = ch.sigma_a[s1], *sc1 = ch.sigma_s[s1], *g1 = ch.g[s1];
+  double sa0 = 0, ss0 = 0, gs0 = 0, sa1 = 0, ss1 = 0, gs1 = 0, t = 0;
+  for (int c = 0; c < 8; ++c) {
+    const std::size_t i = idx[c];
+    sa0 += w[c] * a0[i];
+    const double ssc0 = w[c] * sc0[i];
+    ss0 += ssc0;
+    gs0 += ssc0 * g0[i];
+    sa1 += w[c] * a1[i];
+    const double ssc1 = w[c] * sc1[i];
+    ss1 += ssc1;
+    gs1 += ssc1 * g1[i];
+    t += w[c] * ch.temperature[i];
+  }
+  // Sample `second` last: where the two are one, the same values.
+  out.sigma_a[s0] = sa0;
+  out.sigma_s[s0] = ss0;
+  out.g[s0] = ss0 > 0 ? gs0 / ss0 : 0.0;
+  out.sigma_a[s1] = sa1;
+  out.sigma_s[s1] = ss1;
+  out.g[s1] = ss1 > 0 ? gs1 / ss1 : 0.0;
+  out.temperature_k = t;
 }
 
 }  // namespace
@@ -269,12 +291,30 @@ void GridMedium::coefficients_at(const Vec3& p, MediumPoint& out) const {
 // (docs/performance.md).
 void GridMedium::coefficients_of_samples(const Vec3& p, int first, int second,
                                          MediumPoint& out) const {
-  samples_at<true>(*grid_, channels_, p, first, second, out);
+  samples_at(*grid_, channels_, p, first, second, out);
 }
 
-void GridMedium::extinction_of_samples(const Vec3& p, int first, int second,
-                                       MediumPoint& out) const {
-  samples_at<false>(*grid_, channels_, p, first, second, out);
+// The lerp's two samples' σa and σs summed over the corners in one pass, each
+// sum in sample_sums' order (so the same bits), without a MediumPoint: a
+// tentative collision is most of a photon's lookups (docs/performance.md).
+double GridMedium::extinction_at(const Vec3& p, const SpectralLerp& lambda, MediumPoint&) const {
+  std::array<std::size_t, 8> idx;
+  std::array<double, 8> w;
+  if (!trilinear_corners(*grid_, grid_->placement().world_to_index(p), idx, w)) return 0.0;
+  const auto sample = [&](int s) { return static_cast<std::size_t>(s); };
+  const float* a0 = channels_.sigma_a[sample(lambda.sample0)];
+  const float* s0 = channels_.sigma_s[sample(lambda.sample0)];
+  const float* a1 = channels_.sigma_a[sample(lambda.sample1)];
+  const float* s1 = channels_.sigma_s[sample(lambda.sample1)];
+  double sa0 = 0, ss0 = 0, sa1 = 0, ss1 = 0;
+  for (int c = 0; c < 8; ++c) {
+    sa0 += w[c] * a0[idx[c]];
+    ss0 += w[c] * s0[idx[c]];
+    sa1 += w[c] * a1[idx[c]];
+    ss1 += w[c] * s1[idx[c]];
+  }
+  const double f = lambda.frac;
+  return ((1.0 - f) * sa0 + f * sa1) + ((1.0 - f) * ss0 + f * ss1);
 }
 
 void GridMedium::trace_segments(const Ray& ray, double t_min, double t_max,

@@ -36,7 +36,8 @@ class GridMedium final : public Medium {
   void coefficients_at(const Vec3& p, MediumPoint& out) const override;
   void coefficients_of_samples(const Vec3& p, int first, int second,
                                MediumPoint& out) const override;
-  void extinction_of_samples(const Vec3& p, int first, int second, MediumPoint& out) const override;
+  double extinction_at(const Vec3& p, const SpectralLerp& lambda,
+                       MediumPoint& scratch) const override;
   void trace_segments(const Ray& ray, double t_min, double t_max,
                       const SegmentVisitor& visit) const override;
   void trace_majorants(const Ray& ray, double t_min, double t_max,

@@ -10,6 +10,7 @@
 #include "obscura/core/ray.h"
 #include "obscura/medium/cubic.h"
 #include "obscura/medium/medium_march.h"
+#include "obscura/medium/spectral_lerp.h"
 #include "obscura/medium/voxel_grid.h"
 
 namespace obscura {
@@ -98,13 +99,16 @@ class Medium {
     (void)second;
     coefficients_at(p, out);
   }
-  // σa and σs alone of spectral samples `first` and `second` at a world
-  // point, the same values coefficients_at gives them; out's g, temperature
-  // and other samples are left unspecified. What a tentative collision of
-  // delta and ratio tracking reads (σt at one wavelength). The default
-  // evaluates the samples' whole point; a grid overrides it.
-  virtual void extinction_of_samples(const Vec3& p, int first, int second, MediumPoint& out) const {
-    coefficients_of_samples(p, first, second, out);
+  // σt = σa + σs (1/m) at a world point at one wavelength between the
+  // samples (lambda), the same bits as lambda(σa) + lambda(σs) of
+  // coefficients_at: what a tentative collision of delta and ratio tracking
+  // reads. The default evaluates the samples' whole point into `scratch`
+  // (left unspecified); a grid overrides it with a lean lookup
+  // (docs/performance.md).
+  virtual double extinction_at(const Vec3& p, const SpectralLerp& lambda,
+                               MediumPoint& scratch) const {
+    coefficients_of_samples(p, lambda.sample0, lambda.sample1, scratch);
+    return lambda(scratch.sigma_a.data()) + lambda(scratch.sigma_s.data());
   }
   // Visits, in order of increasing t, the segments of ray ∩ [t_min, t_max]
   // where the medium may be non-zero. `ray.direction` must be unit length.

@@ -4,14 +4,7 @@
 #include <cmath>
 #include <functional>
 
-#include "obscura/core/tabulated_spectrum.h"
-
 namespace obscura {
-
-SpectralLerp SpectralLerp::at(const std::vector<double>& w, double wavelength_um) {
-  const WavelengthBracket b = bracket_wavelength(w, wavelength_um);
-  return {static_cast<int>(b.lower), static_cast<int>(b.upper), b.frac};
-}
 
 namespace {
 
@@ -32,8 +25,7 @@ bool walk_tentative_collisions(const Medium& medium, const Ray& ray, double t_be
   while (true) {
     t += exponential_step(rng, rate);
     if (t >= t_end) return true;
-    medium.extinction_of_samples(ray.at(t), lambda.sample0, lambda.sample1, scratch);
-    const double sigma_t = lambda(scratch.sigma_a.data()) + lambda(scratch.sigma_s.data());
+    const double sigma_t = medium.extinction_at(ray.at(t), lambda, scratch);
     if (!visit(t, sigma_t)) return false;
   }
 }

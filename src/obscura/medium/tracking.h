@@ -15,19 +15,9 @@
 
 #include "obscura/core/rng.h"
 #include "obscura/medium/medium.h"
+#include "obscura/medium/spectral_lerp.h"
 
 namespace obscura {
-
-// Where a wavelength falls between the medium's spectral samples: values are
-// (1 − frac)·v[sample0] + frac·v[sample1] (linear in wavelength, clamped).
-struct SpectralLerp {
-  int sample0 = 0, sample1 = 0;
-  double frac = 0.0;
-  double operator()(const double* per_sample) const {
-    return (1.0 - frac) * per_sample[sample0] + frac * per_sample[sample1];
-  }
-  static SpectralLerp at(const std::vector<double>& sample_wavelengths_um, double wavelength_um);
-};
 
 // The first real collision along the ray in [0, t_max] (t in metres), or
 // nothing when the ray gets through (probability e^{−τ(0, t_max)}).

@@ -97,6 +97,48 @@ TEST(NodeLattice, PeriodicLatticeWrapsSideways) {
   EXPECT_TRUE(lattice.corners(Vec3(57.31, -8.02, 0.5), slot, w));
 }
 
+// corners() finds each axis's two nodes once (not per corner, through
+// slot_of's wraps): its slots are slot_of's for the eight nodes around the
+// point, on a periodic slab (points far outside the period, either side)
+// and on a lattice with missing blocks (slots kNoSlot where slot_of has none).
+TEST(NodeLattice, CornersAreSlotOfTheEightNodesAround) {
+  const auto slab = box(BBox3({-1e3, -1e3, 0}, {1e3, 1e3, 1}));
+  const NodeLattice periodic(*slab, 0.1, 1.0, 1u << 30);
+  GridPlacement place;
+  place.voxel_size_m = 0.1;
+  auto grid = std::make_shared<VoxelGrid>(GridDims{40, 30, 20}, place, std::vector<double>{1.0});
+  grid->sigma_s(0)[grid->index(2, 3, 1)] = 1.0f;
+  grid->sigma_s(0)[grid->index(37, 28, 18)] = 1.0f;
+  const GridMedium sparse_medium(grid);
+  const NodeLattice sparse(sparse_medium, 0.0, 0.0, 1u << 30);
+  ASSERT_LT(sparse.block_count(), 27u);  // some blocks are missing
+  Rng rng(5, 0);
+  int missing = 0;
+  for (const NodeLattice* lattice : {&periodic, &sparse}) {
+    const BBox3 b = lattice == &periodic ? BBox3({-7, -9, 0}, {7, 9, 1}) : grid->world_bounds();
+    for (int n = 0; n < 4000; ++n) {
+      const Vec3 e = b.extent();
+      const Vec3 p = b.lo + Vec3(e.x * rng.uniform(), e.y * rng.uniform(), e.z * rng.uniform());
+      std::array<std::size_t, 8> slot;
+      std::array<double, 8> w;
+      if (!lattice->corners(p, slot, w)) continue;
+      const Vec3 u = lattice->to_lattice(p);
+      int i0[3];
+      for (int a = 0; a < 3; ++a) {
+        i0[a] = static_cast<int>(std::floor(u[a]));
+        if (!(lattice->periodic() && a < 2) && i0[a] == lattice->dims()[a] - 1) --i0[a];
+      }
+      for (int c = 0; c < 8; ++c) {
+        EXPECT_EQ(slot[c],
+                  lattice->slot_of(i0[0] + (c & 1), i0[1] + (c >> 1 & 1), i0[2] + (c >> 2 & 1)))
+            << n << " corner " << c;
+        missing += slot[c] == NodeLattice::kNoSlot;
+      }
+    }
+  }
+  EXPECT_GT(missing, 100);
+}
+
 TEST(NodeLattice, BlocksExistOnlyNearTheMedium) {
   // A grid that is empty except one voxel in a corner: one block of 8³ nodes
   // (and its neighbours reaching it) instead of all of them.
