@@ -290,6 +290,29 @@ TEST(MeshSurface, FarOriginHitsAtTheExactDistance) {
   }
 }
 
+// A ray with a NaN or infinite component never reaches Embree and hits
+// nothing, whether or not its box test lets it through (the box test comes
+// first: mesh_surface.cpp).
+TEST(MeshSurface, RaysWithNonFiniteComponentsHitNothing) {
+  const TriangleMesh m = tank();
+  const MeshSurface s("tank", {300, 1}, m);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const Vec3 towards = normalize(m.bounds().center() - Vec3(0, -20, 1));
+  ASSERT_TRUE([&] {
+    SurfaceHit hit;
+    return s.intersect(Ray{Vec3(0, -20, 1), towards}, 0.0, kInf, hit);
+  }());  // the finite ray hits
+  for (const Ray& ray :
+       {Ray{Vec3(nan, -20, 1), towards}, Ray{Vec3(0, -20, kInf), towards},
+        Ray{Vec3(0, -20, 1), Vec3(towards.x, nan, towards.z)},
+        Ray{Vec3(0, -20, 1), Vec3(0, kInf, 0)}, Ray{Vec3(0, 0, 1), Vec3(nan, nan, nan)}}) {
+    SurfaceHit hit;
+    EXPECT_FALSE(s.intersect(ray, 0.0, kInf, hit))
+        << ray.origin.x << " " << ray.origin.y << " " << ray.origin.z << " → " << ray.direction.x
+        << " " << ray.direction.y << " " << ray.direction.z;
+  }
+}
+
 TEST(MeshSurface, RefusesAMeshWithoutArea) {
   TriangleMesh m;
   m.part_names = {"flat"};

@@ -179,11 +179,14 @@ double MeshSurface::plane_distance(std::size_t index, const Ray& ray) const {
 }
 
 bool MeshSurface::intersect(const Ray& ray, double t_min, double t_max, SurfaceHit& hit) const {
-  if (!is_finite(ray.origin) || !is_finite(ray.direction)) return false;
   const double t_lo = std::max(t_min, 0.0);
   // The part of the window inside the mesh's box, widened by the margin.
   double t0 = t_lo, t1 = t_max;
   if (!(t0 < t1) || !padded_bounds_.intersect(ray, t0, t1)) return false;
+  // Only a ray that may reach the mesh is checked for NaN and infinity before
+  // Embree sees it (most of a photon's flights miss the box: the same
+  // results, fewer instructions).
+  if (!is_finite(ray.origin) || !is_finite(ray.direction)) return false;
   // Embree's ray starts `margin_` before the box; its window covers the
   // clipped one with margin to spare, and the filter applies the exact one.
   const double shift = t0 - margin_;
