@@ -65,10 +65,11 @@ class CacheInScattering {
   // The sun's optical depth per node at distance t along the ray (0 where
   // the lattice holds nothing): the marcher cuts cells where it climbs
   // steeply (emission_marcher.h).
-  void sun_depths(double t, double* tau) const {
-    std::array<std::size_t, 8> slot;
-    std::array<double, 8> w;
-    const bool inside = cache_.lattice().corners(ray_.at(t), slot, w);
+  void sun_depths(double t, double* tau) {
+    const LatticeCorners& at = corners_at(t);
+    const bool inside = at.inside;
+    const auto& slot = at.slot;
+    const auto& w = at.w;
     const LatticeVolume& volume = cache_.volume();
     const auto stride = static_cast<std::size_t>(volume.stride());
     for (int j = 0; j < nodes_; ++j) {
@@ -112,9 +113,10 @@ class CacheInScattering {
     bool scatters = false;
     for (int j = 0; j < nodes_; ++j) scatters = scatters || sigma_s[j] > 0.0;
     if (!scatters) return;
-    std::array<std::size_t, 8> slot;
-    std::array<double, 8> w;
-    if (!cache_.lattice().corners(ray_.at(t), slot, w)) return;
+    const LatticeCorners& at = corners_at(t);
+    if (!at.inside) return;
+    const auto& slot = at.slot;
+    const auto& w = at.w;
     const LatticeVolume& volume = cache_.volume();
     const int stride = volume.stride();
     const int count = only_sun ? record::kSunVisibility + 1 : record::kSh + cache_.sh_count();
@@ -138,12 +140,34 @@ class CacheInScattering {
     }
   }
 
+  // The lattice's corners of the point at distance t. The marcher reads the
+  // light and the sun's depth at the same points (a cell's exit is the next
+  // one's entry), so the last two lookups are kept: half the lookups, the
+  // same values (docs/performance.md).
+  struct LatticeCorners {
+    double t = -1.0;  // no lookup yet: distances along a ray are >= 0
+    bool inside = false;
+    std::array<std::size_t, 8> slot;
+    std::array<double, 8> w;
+  };
+  const LatticeCorners& corners_at(double t) {
+    for (const LatticeCorners& kept : kept_)
+      if (kept.t == t) return kept;
+    LatticeCorners& fresh = kept_[next_];
+    next_ ^= 1;
+    fresh.t = t;
+    fresh.inside = cache_.lattice().corners(ray_.at(t), fresh.slot, fresh.w);
+    return fresh;
+  }
+
   const Medium& medium_;
   const RadianceCache& cache_;
   const CacheLight& light_;
   const Ray& ray_;
   const int* record_;
   int nodes_;
+  std::array<LatticeCorners, 2> kept_;
+  int next_ = 0;
 };
 
 }  // namespace
