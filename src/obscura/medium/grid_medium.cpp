@@ -301,11 +301,10 @@ double GridMedium::extinction_at(const Vec3& p, const SpectralLerp& lambda, Medi
   std::array<std::size_t, 8> idx;
   std::array<double, 8> w;
   if (!trilinear_corners(*grid_, grid_->placement().world_to_index(p), idx, w)) return 0.0;
-  const auto sample = [&](int s) { return static_cast<std::size_t>(s); };
-  const float* a0 = channels_.sigma_a[sample(lambda.sample0)];
-  const float* s0 = channels_.sigma_s[sample(lambda.sample0)];
-  const float* a1 = channels_.sigma_a[sample(lambda.sample1)];
-  const float* s1 = channels_.sigma_s[sample(lambda.sample1)];
+  const auto first = static_cast<std::size_t>(lambda.sample0),
+             second = static_cast<std::size_t>(lambda.sample1);
+  const float *a0 = channels_.sigma_a[first], *s0 = channels_.sigma_s[first];
+  const float *a1 = channels_.sigma_a[second], *s1 = channels_.sigma_s[second];
   double sa0 = 0, ss0 = 0, sa1 = 0, ss1 = 0;
   for (int c = 0; c < 8; ++c) {
     sa0 += w[c] * a0[idx[c]];

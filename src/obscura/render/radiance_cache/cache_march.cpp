@@ -125,9 +125,9 @@ class CacheInScattering {
       std::array<float, record::kSh + HgConvolution::readable(kMaxShDegree)> v{};
       const float* records = volume.records(record_[j]);
       // In float, as the lattice march interpolates (lattice_view_march.h):
-      // the channels' loop in SIMD lanes; a product in double converted per
-      // channel was three quarters of a slab validation at degree 6
-      // (docs/performance.md).
+      // the channels' loop runs in SIMD lanes. A product in double converted
+      // back per channel was a third of a slab validation's instructions at
+      // degree 6 (docs/performance.md).
       for (int c = 0; c < 8; ++c) {
         if (slot[c] == NodeLattice::kNoSlot || w[c] == 0.0) continue;
         const float* r = records + slot[c] * static_cast<std::size_t>(stride);
