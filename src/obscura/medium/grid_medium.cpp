@@ -223,8 +223,7 @@ double trilinear_temperature(const GridChannels& ch, const std::array<std::size_
 }
 
 // Spectral samples `first` and `second` at world point p into `out` (σa,
-// σs, g) and the temperature, the corners summed in one pass, each sum in
-// sample_sums' order (so the same bits as coefficients_at).
+// σs, g) and the temperature, the same bits as coefficients_at.
 void samples_at(const VoxelGrid& g, const GridChannels& ch, const Vec3& p, int first, int second,
                 MediumPoint& out) {
   const std::size_t ns = static_cast<std::size_t>(g.spectral_count());
@@ -245,29 +244,9 @@ void samples_at(const VoxelGrid& g, const GridChannels& ch, const Vec3& p, int f
     out.temperature_k = 0.0;
     return;
   }
-  const float *a0 = ch.sigma_a[s0], *sc0 = ch.sigma_s[s0], *g0 = ch.g[s0];
-  const float *a1 = ch.sigma_a[s1], *sc1 = ch.sigma_s[s1], *g1 = ch.g[s1];
-  double sa0 = 0, ss0 = 0, gs0 = 0, sa1 = 0, ss1 = 0, gs1 = 0, t = 0;
-  for (int c = 0; c < 8; ++c) {
-    const std::size_t i = idx[c];
-    sa0 += w[c] * a0[i];
-    const double ssc0 = w[c] * sc0[i];
-    ss0 += ssc0;
-    gs0 += ssc0 * g0[i];
-    sa1 += w[c] * a1[i];
-    const double ssc1 = w[c] * sc1[i];
-    ss1 += ssc1;
-    gs1 += ssc1 * g1[i];
-    t += w[c] * ch.temperature[i];
-  }
-  // Sample `second` last: where the two are one, the same values.
-  out.sigma_a[s0] = sa0;
-  out.sigma_s[s0] = ss0;
-  out.g[s0] = ss0 > 0 ? gs0 / ss0 : 0.0;
-  out.sigma_a[s1] = sa1;
-  out.sigma_s[s1] = ss1;
-  out.g[s1] = ss1 > 0 ? gs1 / ss1 : 0.0;
-  out.temperature_k = t;
+  sample_coefficients<true>(ch, first, idx, w, out);
+  if (second != first) sample_coefficients<true>(ch, second, idx, w, out);
+  out.temperature_k = trilinear_temperature(ch, idx, w);
 }
 
 }  // namespace
@@ -294,26 +273,17 @@ void GridMedium::coefficients_of_samples(const Vec3& p, int first, int second,
   samples_at(*grid_, channels_, p, first, second, out);
 }
 
-// The lerp's two samples' σa and σs summed over the corners in one pass, each
-// sum in sample_sums' order (so the same bits), without a MediumPoint: a
-// tentative collision is most of a photon's lookups (docs/performance.md).
+// The lerp's two samples' σa and σs (sample_sums, so the same bits),
+// without a MediumPoint: a tentative collision is most of a photon's
+// lookups (docs/performance.md).
 double GridMedium::extinction_at(const Vec3& p, const SpectralLerp& lambda, MediumPoint&) const {
   std::array<std::size_t, 8> idx;
   std::array<double, 8> w;
   if (!trilinear_corners(*grid_, grid_->placement().world_to_index(p), idx, w)) return 0.0;
-  const auto first = static_cast<std::size_t>(lambda.sample0),
-             second = static_cast<std::size_t>(lambda.sample1);
-  const float *a0 = channels_.sigma_a[first], *s0 = channels_.sigma_s[first];
-  const float *a1 = channels_.sigma_a[second], *s1 = channels_.sigma_s[second];
-  double sa0 = 0, ss0 = 0, sa1 = 0, ss1 = 0;
-  for (int c = 0; c < 8; ++c) {
-    sa0 += w[c] * a0[idx[c]];
-    ss0 += w[c] * s0[idx[c]];
-    sa1 += w[c] * a1[idx[c]];
-    ss1 += w[c] * s1[idx[c]];
-  }
+  const SampleSums a = sample_sums<false>(channels_, lambda.sample0, idx, w);
+  const SampleSums b = sample_sums<false>(channels_, lambda.sample1, idx, w);
   const double f = lambda.frac;
-  return ((1.0 - f) * sa0 + f * sa1) + ((1.0 - f) * ss0 + f * ss1);
+  return ((1.0 - f) * a.sigma_a + f * b.sigma_a) + ((1.0 - f) * a.sigma_s + f * b.sigma_s);
 }
 
 void GridMedium::trace_segments(const Ray& ray, double t_min, double t_max,

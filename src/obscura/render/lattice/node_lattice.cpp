@@ -8,6 +8,7 @@
 
 #include "obscura/core/error.h"
 #include "obscura/core/fast_floor.h"
+#include "obscura/core/host_device.h"
 
 namespace obscura {
 namespace {
@@ -122,20 +123,32 @@ LatticeView NodeLattice::view() const {
   return v;
 }
 
-std::size_t NodeLattice::slot_of(int i, int j, int k) const {
-  if (periodic_) {
-    i = wrap(i, dims_[0]);
-    j = wrap(j, dims_[1]);
-  }
-  if (i < 0 || j < 0 || k < 0 || i >= dims_[0] || j >= dims_[1] || k >= dims_[2]) return kNoSlot;
-  const std::size_t block = static_cast<std::size_t>(i / kBlock) +
-                            static_cast<std::size_t>(block_dims_[0]) *
-                                (static_cast<std::size_t>(j / kBlock) +
-                                 static_cast<std::size_t>(block_dims_[1]) * (k / kBlock));
-  const std::int32_t b = block_index_[block];
+// Inlined: corners calls it six times a point.
+OBSCURA_ALWAYS_INLINE inline bool NodeLattice::axis_share(int a, int i, AxisShare& share) const {
+  if (periodic_ && a < 2) i = wrap(i, dims_[a]);
+  if (i < 0 || i >= dims_[a]) return false;
+  const std::size_t block_stride[3] = {
+      1, static_cast<std::size_t>(block_dims_[0]),
+      static_cast<std::size_t>(block_dims_[0]) * static_cast<std::size_t>(block_dims_[1])};
+  constexpr std::size_t kPlaceStride[3] = {1, kBlock, kBlock * kBlock};
+  const auto node = static_cast<std::size_t>(i);
+  share.block = node / kBlock * block_stride[a];
+  share.place = node % kBlock * kPlaceStride[a];
+  return true;
+}
+
+OBSCURA_ALWAYS_INLINE inline std::size_t NodeLattice::slot_from(const AxisShare& x,
+                                                                const AxisShare& y,
+                                                                const AxisShare& z) const {
+  const std::int32_t b = block_index_[x.block + y.block + z.block];
   if (b < 0) return kNoSlot;
-  return static_cast<std::size_t>(b) * kBlockNodes + (i % kBlock) +
-         kBlock * ((j % kBlock) + kBlock * (k % kBlock));
+  return static_cast<std::size_t>(b) * kBlockNodes + x.place + y.place + z.place;
+}
+
+std::size_t NodeLattice::slot_of(int i, int j, int k) const {
+  AxisShare x, y, z;
+  if (!axis_share(0, i, x) || !axis_share(1, j, y) || !axis_share(2, k, z)) return kNoSlot;
+  return slot_from(x, y, z);
 }
 
 std::array<int, 3> NodeLattice::slot_node(std::size_t slot) const {
@@ -178,44 +191,23 @@ bool NodeLattice::corners(const Vec3& p, std::array<std::size_t, 8>& slot,
       f[a] = 1.0;
     }
   }
-  // Each axis's two nodes wrapped and split into their block's and their
-  // place's share of the slot once, not per corner in slot_of: the same
-  // slots and weights, in about a third of the instructions (the generic
-  // march reads the lattice at every point; docs/performance.md).
-  const std::size_t block_stride[3] = {
-      1, static_cast<std::size_t>(block_dims_[0]),
-      static_cast<std::size_t>(block_dims_[0]) * static_cast<std::size_t>(block_dims_[1])};
-  constexpr std::size_t kPlaceStride[3] = {1, kBlock, kBlock * kBlock};
-  // The corners c whose bit a is b: those lose their slot if that node is
-  // off the lattice.
-  constexpr unsigned kCornersOf[3][2] = {{0x55, 0xAA}, {0x33, 0xCC}, {0x0F, 0xF0}};
-  std::size_t block_part[3][2], place_part[3][2];
+  // Each axis's two nodes wrapped and split into their shares of the slot
+  // once, not per corner through slot_of: the same slots and weights, in
+  // about a third of the instructions (the generic march reads the lattice
+  // at every point; docs/performance.md).
+  AxisShare share[3][2];
+  bool on[3][2];
   double weight[3][2];
-  unsigned on_lattice = 0xFF;
   for (int a = 0; a < 3; ++a) {
     weight[a][0] = 1 - f[a];
     weight[a][1] = f[a];
-    for (int b = 0; b < 2; ++b) {
-      int i = i0[a] + b;
-      if (periodic_ && a < 2) i = wrap(i, dims_[a]);
-      if (i < 0 || i >= dims_[a]) {
-        on_lattice &= ~kCornersOf[a][b];
-        i = 0;
-      }
-      const auto node = static_cast<std::size_t>(i);
-      block_part[a][b] = node / kBlock * block_stride[a];
-      place_part[a][b] = node % kBlock * kPlaceStride[a];
-    }
+    for (int b = 0; b < 2; ++b) on[a][b] = axis_share(a, i0[a] + b, share[a][b]);
   }
   for (int c = 0; c < 8; ++c) {
     const int x = c & 1, y = c >> 1 & 1, z = c >> 2 & 1;
     w[c] = weight[0][x] * weight[1][y] * weight[2][z];
-    slot[c] = kNoSlot;
-    if (!(on_lattice >> c & 1)) continue;
-    const std::int32_t b = block_index_[block_part[0][x] + block_part[1][y] + block_part[2][z]];
-    if (b >= 0)
-      slot[c] = static_cast<std::size_t>(b) * kBlockNodes + place_part[0][x] + place_part[1][y] +
-                place_part[2][z];
+    slot[c] = on[0][x] && on[1][y] && on[2][z] ? slot_from(share[0][x], share[1][y], share[2][z])
+                                               : kNoSlot;
   }
   return true;
 }

@@ -92,6 +92,15 @@ class NodeLattice {
   LatticeView view() const;
 
  private:
+  // Node index i along axis a (wrapped when periodic) as its share of the
+  // block's index and of the place in the block; false off the lattice.
+  // slot_of and corners (which finds each axis's two nodes once) both build
+  // a slot from these shares with slot_from.
+  struct AxisShare {
+    std::size_t block = 0, place = 0;
+  };
+  bool axis_share(int a, int i, AxisShare& share) const;
+  std::size_t slot_from(const AxisShare& x, const AxisShare& y, const AxisShare& z) const;
   void allocate_blocks(const Medium& medium);
 
   Vec3 origin_;

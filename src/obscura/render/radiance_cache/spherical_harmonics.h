@@ -50,6 +50,32 @@ decltype(auto) with_sh_count(int degree, F&& f) {
 #endif
 
 #if !OBSCURA_DEVICE_CODE
+// The constants of spherical_harmonics_above_degree_3 (below) that depend
+// on (l, m) alone: Q_mm and K_lm (√2 K_lm for m > 0), computed once, not
+// per direction.
+struct ShAboveDegree3Constants {
+  double q_mm[kMaxShDegree + 1];
+  double k[kMaxShDegree + 1][kMaxShDegree + 1];  // [l][m]
+};
+inline const ShAboveDegree3Constants& sh_above_degree_3_constants() {
+  static const ShAboveDegree3Constants constants = [] {
+    ShAboveDegree3Constants c{};
+    for (int m = 0; m <= kMaxShDegree; ++m) {
+      c.q_mm[m] = 1.0;  // (2m − 1)!!
+      for (int k = 1; k <= m; ++k) c.q_mm[m] *= 2 * k - 1;
+      double ratio = 1.0;  // (l − m)!/(l + m)!
+      for (int k = 1; k <= 2 * m; ++k) ratio /= k;
+      for (int l = m; l <= kMaxShDegree; ++l) {
+        if (l > m) ratio *= static_cast<double>(l - m) / (l + m);
+        const double k_lm = std::sqrt((2 * l + 1) * ratio * (0.25 * std::numbers::inv_pi));
+        c.k[l][m] = m == 0 ? k_lm : std::numbers::sqrt2 * k_lm;
+      }
+    }
+    return c;
+  }();
+  return constants;
+}
+
 // Y_lm(d) for 4 ≤ l ≤ degree into y[l² + l + m], in the form the explicit
 // degrees below take: Y_l0 = K_l0 Q_l0(z), Y_l±m = √2 K_lm Q_lm(z) times the
 // real (+m) or imaginary (−m) part of (x + i y)^m, m > 0, where Q_lm is the
@@ -60,6 +86,7 @@ decltype(auto) with_sh_count(int degree, F&& f) {
 // Q_mm = (2m − 1)!! (Press et al., Numerical Recipes, §6.7).
 inline void spherical_harmonics_above_degree_3(double x, double yy, double z, int degree,
                                                std::array<double, kMaxShCoefficients>& y) {
+  const ShAboveDegree3Constants& c = sh_above_degree_3_constants();
   double re[kMaxShDegree + 1], im[kMaxShDegree + 1];  // (x + i y)^m
   re[0] = 1.0;
   im[0] = 0.0;
@@ -68,25 +95,19 @@ inline void spherical_harmonics_above_degree_3(double x, double yy, double z, in
     im[m] = im[m - 1] * x + re[m - 1] * yy;
   }
   for (int m = 0; m <= degree; ++m) {
-    double q_mm = 1.0;  // (2m − 1)!!
-    for (int k = 1; k <= m; ++k) q_mm *= 2 * k - 1;
-    double q_prev = 0.0, q = q_mm;  // Q_{l−1,m}, Q_lm
-    double ratio = 1.0;             // (l − m)!/(l + m)!
-    for (int k = 1; k <= 2 * m; ++k) ratio /= k;
+    double q_prev = 0.0, q = c.q_mm[m];  // Q_{l−1,m}, Q_lm
     for (int l = m; l <= degree; ++l) {
       if (l > m) {
         const double next = ((2 * l - 1) * z * q - (l + m - 1) * q_prev) / (l - m);
         q_prev = q;
         q = next;
-        ratio *= static_cast<double>(l - m) / (l + m);
       }
       if (l < 4) continue;
-      const double k_lm = std::sqrt((2 * l + 1) * ratio * (0.25 * std::numbers::inv_pi));
       if (m == 0) {
-        y[l * l + l] = k_lm * q;
+        y[l * l + l] = c.k[l][0] * q;
       } else {
-        y[l * l + l + m] = std::numbers::sqrt2 * k_lm * q * re[m];
-        y[l * l + l - m] = std::numbers::sqrt2 * k_lm * q * im[m];
+        y[l * l + l + m] = c.k[l][m] * q * re[m];
+        y[l * l + l - m] = c.k[l][m] * q * im[m];
       }
     }
   }
