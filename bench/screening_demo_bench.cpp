@@ -167,7 +167,11 @@ int main(int argc, char** argv) {
     std::map<std::string, Totals> per_band;
     std::map<double, double> per_frame;  // time → wall seconds of all its sensors
     std::vector<std::string> order;
+    std::uint64_t traced = 0, colliding = 0, collisions = 0;  // the photons' walks
     for (const SensorFrameStats& frame : result.sensor_frames) {
+      traced += frame.stats.photons_traced;
+      colliding += frame.stats.photons_colliding;
+      collisions += frame.stats.photon_collisions;
       per_frame[frame.time_s] += frame.staging_seconds / scene.sensors.size() + frame.stats.seconds;
       const Sensor& sensor = *std::find_if(scene.sensors.begin(), scene.sensors.end(),
                                            [&](const Sensor& s) { return s.name == frame.sensor; });
@@ -226,6 +230,13 @@ int main(int argc, char** argv) {
     std::printf("per frame: mean %.3f s, peak %.3f s (t = %g s)\n", all.total() / frames, peak,
                 peak_time);
     std::printf("whole run: preparation %.1f s + frames %.1f s\n", prepare_s, all.total());
+    // Where the photons' time goes: a photon that meets no smoke costs little.
+    if (traced > 0)
+      std::printf(
+          "photons per frame: %.3g traced, %.1f %% met the smoke with %.1f real collisions "
+          "each\n",
+          static_cast<double>(traced) / frames, 100.0 * colliding / traced,
+          colliding ? static_cast<double>(collisions) / colliding : 0.0);
     fs::remove_all(dir);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "bench_screening_demo: %s\n", e.what());

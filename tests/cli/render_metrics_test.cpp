@@ -151,3 +151,35 @@ TEST_F(RenderMetricsTest, NoTargetSurfaceMeansNoMetrics) {
 
 }  // namespace
 }  // namespace obscura
+
+namespace obscura {
+namespace {
+
+// summary.json says how the photons went: a radiance-cache render of a
+// scattering cloud (its cache charged to the sensor, the only one) traces
+// photons, some of which meet the cloud, each with at least one collision.
+TEST_F(RenderMetricsTest, SummaryCountsThePhotonsWalks) {
+  auto scene = nlohmann::json::parse(testing::read_text_file(write_scene(true)));
+  scene["clouds"][0]["sigma_a"] = {0.1, 0.1};
+  scene["clouds"][0]["sigma_s"] = {0.5, 0.5};
+  scene["render"] = {{"method", "radiance-cache"},
+                     {"spectral_nodes_per_band", 1},
+                     {"radiance_cache", {{"photons", 3000}}}};
+  std::ofstream(dir_ / "cache.json") << scene.dump(2);
+  const auto out = dir_ / "out";
+  const auto r = render(dir_ / "cache.json", out, "--at 0");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto summary = nlohmann::json::parse(testing::read_text_file(out / "summary.json"));
+  ASSERT_EQ(summary["sensors"].size(), 1u) << summary.dump();
+  const auto& s = summary["sensors"][0];
+  const auto traced = s["photons_traced"].get<std::uint64_t>(),
+             colliding = s["photons_colliding"].get<std::uint64_t>(),
+             collisions = s["photon_collisions"].get<std::uint64_t>();
+  EXPECT_GT(traced, 3000u) << s.dump();  // three bands of 3000 launches each
+  EXPECT_GT(colliding, 0u) << s.dump();
+  EXPECT_LE(colliding, traced) << s.dump();
+  EXPECT_GE(collisions, colliding) << s.dump();
+}
+
+}  // namespace
+}  // namespace obscura

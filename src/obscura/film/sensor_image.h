@@ -35,6 +35,9 @@ struct RenderStats {
   double photon_seconds = 0;
   double photon_trace_seconds = 0;  // … of which tracing photons
   double photon_build_seconds = 0;  // … and building the kd-trees
+  // Photons traced, those with a real collision in the medium, and their
+  // real collisions: where the photons' time goes.
+  std::uint64_t photons_traced = 0, photons_colliding = 0, photon_collisions = 0;
 };
 
 // Pixels are row-major, top row first: pixel (x, y) is at y * width + x.

@@ -71,6 +71,9 @@ struct PreparationStats {
   double seconds = 0;              // wall time of the preparation
   double trace_seconds = 0;        // … of which tracing photons
   double build_seconds = 0;        // … and building search structures
+  // The photons' walks (photon_map/photon_tracing.h, PhotonWalks): photons
+  // traced, those that met the medium, and their real collisions.
+  std::uint64_t photons_traced = 0, photons_colliding = 0, photon_collisions = 0;
 };
 
 class Integrator {

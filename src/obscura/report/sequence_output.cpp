@@ -111,11 +111,16 @@ nlohmann::json sensor_frame_json(const SensorFrameStats& s, const std::string& e
                       {"voxel_segments", s.stats.segments},
                       // Where the time went, s: staging the clouds at this time
                       // (once per frame, shared by its sensors), then photon
-                      // tracing and kd-trees (photon map only).
+                      // tracing and their building (photon methods), and
+                      // how the photons went: traced, meeting the medium,
+                      // their real collisions (what their time is spent on).
                       {"staging_seconds", s.staging_seconds},
                       {"photons", s.stats.photons},
                       {"photon_trace_seconds", s.stats.photon_trace_seconds},
                       {"photon_build_seconds", s.stats.photon_build_seconds},
+                      {"photons_traced", s.stats.photons_traced},
+                      {"photons_colliding", s.stats.photons_colliding},
+                      {"photon_collisions", s.stats.photon_collisions},
                       {"bands", nlohmann::json::array()}};
   for (const SensorFrameStats::BandFigures& b : s.bands)
     j["bands"].push_back({{"name", b.band.name()},

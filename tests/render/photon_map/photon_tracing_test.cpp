@@ -1,8 +1,9 @@
 // Pass 1 of photon mapping: the launched power of every source equals the
 // source's power (exactly for the sun and a uniform sky, within the Monte
 // Carlo error for a heterogeneous emitting cloud against an independent
-// quadrature), photons are stored only where the chosen form says, and the
-// photons do not depend on the thread count.
+// quadrature), photons are stored only where the chosen form says, the
+// counts of their walks match closed forms, and the photons do not depend on
+// the thread or process count.
 #include "obscura/render/photon_map/photon_tracing.h"
 
 #include <gtest/gtest.h>
@@ -172,6 +173,37 @@ TEST(PhotonTracing, StoresScatteringEventsAsTheFormSays) {
   }
 }
 
+// The photons' walks against closed forms. Sun photons from the zenith
+// (a point sun) through the disc of the box's bounding sphere, R² = (2² + 1 +
+// 1)/4: a share 2 m² / (π R²) of the lines crosses the box's top, and of
+// those 1 − e^{−σt·1 m} collide in it. In a purely absorbing box each photon
+// that collides ends there, with one real collision; in a scattering one it
+// may collide more. Binomial counts within 4 standard errors.
+TEST(PhotonTracing, WalksCountThePhotonsThatMeetTheMedium) {
+  for (const double sigma_s : {0.0, 0.6}) {
+    Scene scene = cube_scene(0.4, sigma_s, 0.0);
+    scene.sun.enabled = true;
+    scene.sun.elevation_deg = 90.0;
+    scene.sun.angular_diameter_deg = 0.0;
+    const SpectralNodes nodes = nodes_at(0.55, scene.medium->wavelengths_um());
+    PhotonTracingSettings s;
+    s.photons = 200000;
+    s.absorb_by_weight = false;
+    const TracedPhotons t = trace_photons(scene, nodes.nodes()[0], 1ull << 40, s);
+    ASSERT_EQ(t.launched_count[0], s.photons);  // a black sky and a cold box: the sun alone
+    EXPECT_EQ(t.walks.photons, static_cast<std::uint64_t>(s.photons));
+    const double disc = kPi * (4.0 + 1.0 + 1.0) / 4.0;
+    const double p = 2.0 / disc * (1.0 - std::exp(-(0.4 + sigma_s)));
+    const double n = static_cast<double>(s.photons);
+    EXPECT_NEAR(static_cast<double>(t.walks.colliding), p * n, 4.0 * std::sqrt(n * p * (1 - p)))
+        << "σs " << sigma_s;
+    if (sigma_s == 0.0)
+      EXPECT_EQ(t.walks.collisions, t.walks.colliding);
+    else
+      EXPECT_GT(t.walks.collisions, t.walks.colliding + t.walks.colliding / 10);
+  }
+}
+
 TEST(PhotonTracing, PhotonsDoNotDependOnTheThreadCount) {
   Scene scene = cube_scene(0.2, 1.5, 350.0);
   scene.sun.enabled = true;
@@ -188,6 +220,25 @@ TEST(PhotonTracing, PhotonsDoNotDependOnTheThreadCount) {
   ASSERT_GT(a.photons.size(), 1000u);
   EXPECT_EQ(0, std::memcmp(a.photons.data(), b.photons.data(), a.photons.size() * sizeof(Photon)));
   EXPECT_EQ(a.launched.environment_w_um, b.launched.environment_w_um);
+  EXPECT_EQ(a.walks.colliding, b.walks.colliding);
+  EXPECT_EQ(a.walks.collisions, b.walks.collisions);
+  // Nor on the process count: every process receives every chunk, its
+  // walks' counts too.
+  std::vector<TracedPhotons> by_rank(2);
+  testing::run_ranks(2, [&](const ProcessGroup& group) {
+    PhotonTracingSettings shared = s;
+    shared.processes = &group;
+    by_rank[static_cast<std::size_t>(group.rank())] =
+        trace_photons(scene, nodes.nodes()[0], 1ull << 40, shared);
+  });
+  for (const TracedPhotons& r : by_rank) {
+    ASSERT_EQ(r.photons.size(), a.photons.size());
+    EXPECT_EQ(0,
+              std::memcmp(r.photons.data(), a.photons.data(), a.photons.size() * sizeof(Photon)));
+    EXPECT_EQ(r.walks.photons, a.walks.photons);
+    EXPECT_EQ(r.walks.colliding, a.walks.colliding);
+    EXPECT_EQ(r.walks.collisions, a.walks.collisions);
+  }
 }
 
 }  // namespace

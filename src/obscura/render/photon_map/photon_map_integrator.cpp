@@ -85,6 +85,9 @@ PhotonMapIntegrator::PhotonMapIntegrator(const Scene& scene, const FrameSpectra&
         const auto t0 = std::chrono::steady_clock::now();
         m.traced = trace_photons(scene, node, base, tracing);
         stats.trace_seconds += seconds_since(t0);
+        stats.photons_traced += m.traced.walks.photons;
+        stats.photons_colliding += m.traced.walks.colliding;
+        stats.photon_collisions += m.traced.walks.collisions;
         const auto t1 = std::chrono::steady_clock::now();
         m.map = std::make_unique<PhotonMap>(std::move(m.traced.photons));
         stats.build_seconds += seconds_since(t1);

@@ -174,6 +174,7 @@ struct ChunkRecord {
   std::vector<Photon> photons;
   std::vector<PhotonFlight> flights;
   std::vector<SurfaceDeposit> deposits;
+  PhotonWalks walks;
 };
 
 PhotonFlight flight_of(const Ray& ray, double length_m, double power) {
@@ -197,6 +198,8 @@ void trace_photon(const Scene& scene, const SpectralNode& node, const SpectralLe
                        static_cast<float>(p),
                        static_cast<std::int32_t>(surface)});
   };
+  ++record.walks.photons;
+  bool collided = false;
   for (int bounce = 0; bounce < settings.max_scatterings; ++bounce) {
     SurfaceHit hit;
     const bool on_surface =
@@ -223,6 +226,9 @@ void trace_photon(const Scene& scene, const SpectralNode& node, const SpectralLe
     if (settings.surface_deposits && t && on_surface && l.from_sky && !scattered)
       deposit(ray.at(hit.t), -power, hit.surface);
     if (t) {
+      ++record.walks.collisions;
+      if (!collided) ++record.walks.colliding;
+      collided = true;
       const double sigma_a = lambda(scratch.sigma_a.data()),
                    sigma_s = lambda(scratch.sigma_s.data());
       if (settings.absorb_by_weight) {
@@ -481,6 +487,7 @@ void share_chunks(const ProcessGroup& processes, std::vector<ChunkRecord>& store
     out.put_vector(stored[c].photons);
     out.put_vector(stored[c].flights);
     out.put_vector(stored[c].deposits);
+    out.put(stored[c].walks);
   }
   const std::vector<std::string> all = processes.all_gather(out.take());
   for (std::size_t r = 0; r < ranks; ++r) {
@@ -491,6 +498,7 @@ void share_chunks(const ProcessGroup& processes, std::vector<ChunkRecord>& store
       stored[c].photons = in.get_vector<Photon>();
       stored[c].flights = in.get_vector<PhotonFlight>();
       stored[c].deposits = in.get_vector<SurfaceDeposit>();
+      stored[c].walks = in.get<PhotonWalks>();
     }
     OBSCURA_CHECK(in.done());
   }
@@ -615,6 +623,9 @@ TracedPhotons trace_photons(const Scene& scene, const SpectralNode& node, std::u
     out.launched.sun_w_um += launched[c][kSun];
     out.launched.environment_w_um += launched[c][kEnvironment];
     out.launched.emission_w_um += launched[c][kEmission];
+    out.walks.photons += stored[c].walks.photons;
+    out.walks.colliding += stored[c].walks.colliding;
+    out.walks.collisions += stored[c].walks.collisions;
   }
   return out;
 }

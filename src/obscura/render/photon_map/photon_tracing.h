@@ -106,6 +106,15 @@ struct PhotonSourcePowers {
   double total() const { return sun_w_um + environment_w_um + emission_w_um; }
 };
 
+// How the traced photons went, which is what they cost: the photons traced
+// (an environment line launches one per piece of it), those with at least
+// one real collision in the medium (they meet the smoke), and their real
+// collisions (scatterings and absorptions). A walk in a thick cloud that
+// scatters without absorbing is long (docs/validation.md).
+struct PhotonWalks {
+  std::uint64_t photons = 0, colliding = 0, collisions = 0;
+};
+
 struct TracedPhotons {
   std::vector<Photon> photons;              // stored at scattering events
   std::vector<PhotonFlight> flights;        // with settings.flights: the flights instead
@@ -113,6 +122,7 @@ struct TracedPhotons {
   PhotonSourcePowers launched;              // Σ of the launched photons' powers per source
   PhotonSourcePowers estimated;             // the powers used to share the photons out
   long long launched_count[3] = {0, 0, 0};  // sun, environment, emission
+  PhotonWalks walks;
 };
 
 // Throws InputError naming settings.memory_field when the photons (or

@@ -510,6 +510,9 @@ void RadianceCache::splat(const Scene& scene, const SpectralNode& node, int inde
   const std::uint64_t base = (static_cast<std::uint64_t>(index) + 1) << 40;
   TracedPhotons traced = trace_photons(scene, node, base, tracing);
   photons_stored_ += tracing.flights ? traced.flights.size() : traced.photons.size();
+  walks_.photons += traced.walks.photons;
+  walks_.colliding += traced.walks.colliding;
+  walks_.collisions += traced.walks.collisions;
   if (tracing.surface_deposits) {
     const BoundingSphere sphere = photon_bounding_sphere(scene);
     ground_[static_cast<std::size_t>(index)] =

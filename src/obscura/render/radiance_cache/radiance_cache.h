@@ -38,6 +38,7 @@
 #include "obscura/render/integrator.h"
 #include "obscura/render/lattice/lattice_volume.h"
 #include "obscura/render/lattice/node_lattice.h"
+#include "obscura/render/photon_map/photon_tracing.h"
 #include "obscura/render/radiance_cache/ground_light.h"
 #include "obscura/render/radiance_cache/light_region.h"
 #include "obscura/render/radiance_cache/spherical_harmonics.h"
@@ -98,6 +99,8 @@ class RadianceCache {
 
   // What building it cost.
   std::uint64_t photons_stored() const { return photons_stored_; }
+  // The photons' walks over every spectral node (photon_tracing.h).
+  const PhotonWalks& photon_walks() const { return walks_; }
   std::size_t memory_bytes() const;
   double seconds = 0, sun_seconds = 0, photon_seconds = 0, splat_seconds = 0;
 
@@ -145,6 +148,7 @@ class RadianceCache {
   bool light_in_view_ = false;           // whether they are boxes around sensors' views
   std::vector<long long> node_photons_;  // per spectral node, launched
   std::uint64_t photons_stored_ = 0;
+  PhotonWalks walks_;
 };
 
 // Adds to `behind[j]` (a surface's radiance seen along camera ray `camera`,
