@@ -1,7 +1,9 @@
 #pragma once
 // Progress of a render on stderr for runs longer than a second: a rewritten
 // line on a terminal, an occasional line otherwise (logs, CI). One line per
-// sensor and frame, labelled "tv frame 3/16 (t = 4 s)" in a sequence.
+// sensor and frame, labelled "tv frame 3/16 (t = 4 s)" in a sequence, and
+// before a frame's sensors one for its photons where a photon method traces
+// them ("photons frame 3/16 (t = 4 s)").
 #include <fmt/format.h>
 #include <unistd.h>
 
@@ -27,12 +29,17 @@ class ProgressPrinter {
     const double elapsed = seconds();
     if (elapsed < 1.0) return;
     const double interval = tty_ ? 0.25 : 5.0;
-    if (p.rows_done != p.rows_total && elapsed - last_ < interval) return;
+    const bool photons = p.sensor < 0;
+    const double done = photons ? static_cast<double>(p.photons_done) : p.rows_done,
+                 total = photons ? static_cast<double>(p.photons_total) : p.rows_total;
+    if (done != total && elapsed - last_ < interval) return;
     last_ = elapsed;
-    const double eta = p.rows_done > 0 ? elapsed * (p.rows_total - p.rows_done) / p.rows_done : 0.0;
-    std::cerr << fmt::format("{}render {}: {:5.1f}% ({}/{} rows, {:.1f} s, ~{:.0f} s left){}",
-                             tty_ ? "\r" : "", label_, 100.0 * p.rows_done / p.rows_total,
-                             p.rows_done, p.rows_total, elapsed, eta, tty_ ? "" : "\n");
+    const double eta = done > 0 ? elapsed * (total - done) / done : 0.0;
+    const std::string count = photons ? fmt::format("{:.3g}/{:.3g} photons", done, total)
+                                      : fmt::format("{}/{} rows", p.rows_done, p.rows_total);
+    std::cerr << fmt::format("{}render {}: {:5.1f}% ({}, {:.1f} s, ~{:.0f} s left){}",
+                             tty_ ? "\r" : "", label_, total > 0 ? 100.0 * done / total : 100.0,
+                             count, elapsed, eta, tty_ ? "" : "\n");
     printed_ = true;
   }
   // Ends the current line on a terminal.
@@ -46,7 +53,8 @@ class ProgressPrinter {
     end_line();
     frame_ = p.frame;
     sensor_ = p.sensor;
-    const std::string& name = scene_.sensors[static_cast<std::size_t>(p.sensor)].name;
+    const std::string name =
+        p.sensor < 0 ? "photons" : scene_.sensors[static_cast<std::size_t>(p.sensor)].name;
     label_ = sequence_ ? fmt::format("{} frame {}/{} (t = {:.4g} s)", name, p.frame + 1, p.frames,
                                      p.time_s)
                        : name;

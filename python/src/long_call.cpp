@@ -13,9 +13,15 @@ void LongCall::report(const RenderProgress& p) {
     d["frame"] = p.frame;
     d["frames"] = p.frames;
     d["time_s"] = p.time_s;
-    d["sensor"] = scene_->sensors.at(static_cast<std::size_t>(p.sensor)).name;
-    d["rows_done"] = p.rows_done;
-    d["rows_total"] = p.rows_total;
+    if (p.sensor < 0) {  // the frame's photons, before its sensors
+      d["sensor"] = py::none();
+      d["photons_done"] = p.photons_done;
+      d["photons_total"] = p.photons_total;
+    } else {
+      d["sensor"] = scene_->sensors.at(static_cast<std::size_t>(p.sensor)).name;
+      d["rows_done"] = p.rows_done;
+      d["rows_total"] = p.rows_total;
+    }
     return py::object(d);
   });
 }

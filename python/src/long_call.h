@@ -25,7 +25,8 @@ namespace py = pybind11;
 class LongCall {
  public:
   // `progress`: None or a callable taking one dict (frame, frames, time_s,
-  // sensor, rows_done, rows_total) per render report of `scene`.
+  // sensor, rows_done, rows_total; or, while a frame's photons are traced,
+  // sensor None, photons_done, photons_total) per render report of `scene`.
   LongCall(py::object progress, const Scene& scene);
   // `progress`: None or a callable taking one line of text per report.
   explicit LongCall(py::object progress);

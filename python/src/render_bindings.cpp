@@ -76,7 +76,13 @@ std::vector<std::shared_ptr<SensorImage>> render_sensors(SceneHandle& h, double 
   // As render_frame (sequence/sequence_runner.h): one integrator prepared for
   // every sensor of the frame, then each sensor through it.
   const FrameSpectra spectra = frame_spectra(scene);
-  const std::unique_ptr<Integrator> integrator = make_frame_integrator(scene, spectra);
+  const std::unique_ptr<Integrator> integrator =
+      make_frame_integrator(scene, spectra, single_process(), [&](long long done, long long total) {
+        RenderProgress p{0, 1, time, -1, 0, 0};
+        p.photons_done = done;
+        p.photons_total = total;
+        call.report(p);
+      });
   std::vector<std::shared_ptr<SensorImage>> images;
   for (int s : sensors) {
     RenderOptions options;

@@ -78,6 +78,32 @@ def test_a_scene_with_an_adaptive_threshold_renders_with_a_monte_carlo_method(sc
     np.testing.assert_array_equal(np.asarray(obscura.render(scene)["ir"].samples_per_pixel), spp)
 
 
+def test_progress_counts_the_photons_before_the_rows(scene_dict):
+    # The radiance cache traces each spectral node's photons before any row:
+    # 2 bands × 2 nodes × 5000 photons, reported in chunks.
+    scene_dict["render"] = {"method": "radiance-cache", "seed": 1, "spectral_nodes_per_band": 2,
+                            "radiance_cache": {"photons": 5000}}
+    scene = obscura.Scene.from_dict(scene_dict)
+    seen = []
+    obscura.render(scene, progress=seen.append, threads=2)
+    photons = [p for p in seen if p["sensor"] is None]
+    assert photons and seen[:len(photons)] == photons  # before the rows
+    assert all(p["photons_total"] == 4 * 5000 for p in photons)
+    done = [p["photons_done"] for p in photons]
+    assert done == sorted(done) and done[-1] == 4 * 5000
+    assert seen[-1]["rows_done"] == seen[-1]["rows_total"] == 16
+
+    class Stop(Exception):
+        pass
+
+    def stop_in_photons(p):
+        if p["sensor"] is None:
+            raise Stop()
+
+    with pytest.raises(Stop):
+        obscura.render(scene, progress=stop_in_photons)
+
+
 def test_progress_is_reported_and_its_exception_stops_the_render(scene_dict):
     scene = obscura.Scene.from_dict(scene_dict)
     seen = []

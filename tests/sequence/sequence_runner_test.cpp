@@ -5,7 +5,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstring>
+#include <mutex>
 
 #include "obscura/medium/homogeneous_medium.h"
 #include "obscura/render/renderer.h"
@@ -92,6 +94,47 @@ TEST(SequenceRunner, ProgressNamesFrameAndSensor) {
   };
   render_sequence(scene, {0.0, 1.0}, options);
   EXPECT_EQ(calls.load(), 2 * 2 * 8);  // every row of every sensor of every frame
+}
+
+// A photon method's frame is prepared before its rows: the progress first
+// counts the frame's photons (sensor −1), in increasing order up to all the
+// spectral nodes' photons, then the sensors' rows. (The cloud absorbs only,
+// over a ground: the radiance cache still traces every node's photons for
+// the cloud's light on the ground.)
+TEST(SequenceRunner, ProgressCountsAFramesPhotonsBeforeItsRows) {
+  for (const RenderMethod method : {RenderMethod::kRadianceCache, RenderMethod::kPhotonMap}) {
+    Scene scene = test_scene();
+    scene.settings.method = method;
+    scene.settings.radiance_cache.photons_per_node = 5000;
+    scene.settings.photon_map.photons_per_node = 5000;
+    std::mutex mutex;
+    std::vector<RenderProgress> seen;
+    SequenceOptions options;
+    options.progress = [&](const RenderProgress& p) {
+      std::lock_guard lock(mutex);
+      seen.push_back(p);
+    };
+    render_sequence(scene, {0.0}, options);
+    const auto first_row = std::find_if(seen.begin(), seen.end(),
+                                        [](const RenderProgress& p) { return p.sensor >= 0; });
+    ASSERT_NE(first_row, seen.begin()) << render_method_name(method);
+    // 2 sensors × 1 band × 2 nodes (the photon map traces each sensor's
+    // bands; the cache each distinct node once, here 4 as well).
+    const long long total = 4 * 5000;
+    long long before = 0;
+    for (auto p = seen.begin(); p != first_row; ++p) {
+      EXPECT_EQ(p->sensor, -1);
+      EXPECT_EQ(p->photons_total, total) << render_method_name(method);
+      EXPECT_GE(p->photons_done, before);
+      before = p->photons_done;
+    }
+    EXPECT_EQ(before, total) << render_method_name(method);
+    // Chunks of 2048 photons: three per node at least.
+    EXPECT_GE(first_row - seen.begin(), 4 * 3) << render_method_name(method);
+    EXPECT_TRUE(std::all_of(first_row, seen.end(), [](const RenderProgress& p) {
+      return p.sensor >= 0 && p.photons_total == 0;
+    }));
+  }
 }
 
 TEST(SequenceRunner, ParsesTimeRanges) {

@@ -7,10 +7,12 @@
 namespace obscura {
 
 std::unique_ptr<Integrator> make_frame_integrator(const Scene& scene, const FrameSpectra& spectra,
-                                                  const ProcessGroup& processes) {
+                                                  const ProcessGroup& processes,
+                                                  const PreparationProgress& progress) {
   if (scene.settings.device == RenderDevice::kCpu)
-    return make_integrator(scene, spectra, processes);
-  return std::make_unique<LatticeBatchIntegrator>(scene, spectra, make_gpu_executor(), processes);
+    return make_integrator(scene, spectra, processes, progress);
+  return std::make_unique<LatticeBatchIntegrator>(scene, spectra, make_gpu_executor(), processes,
+                                                  progress);
 }
 
 }  // namespace obscura

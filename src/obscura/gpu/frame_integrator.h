@@ -12,6 +12,7 @@
 namespace obscura {
 
 std::unique_ptr<Integrator> make_frame_integrator(const Scene& scene, const FrameSpectra& spectra,
-                                                  const ProcessGroup& processes = single_process());
+                                                  const ProcessGroup& processes = single_process(),
+                                                  const PreparationProgress& progress = {});
 
 }  // namespace obscura

@@ -37,7 +37,8 @@ void on_device(F&& f) {
 
 LatticeBatchIntegrator::LatticeBatchIntegrator(const Scene& scene, const FrameSpectra& spectra,
                                                std::unique_ptr<LatticeExecutor> executor,
-                                               const ProcessGroup& processes)
+                                               const ProcessGroup& processes,
+                                               const PreparationProgress& progress)
     : BatchIntegrator(scene, spectra),
       distinct_(distinct_nodes(spectra)),
       executor_(std::move(executor)) {
@@ -67,7 +68,7 @@ LatticeBatchIntegrator::LatticeBatchIntegrator(const Scene& scene, const FrameSp
     // Only camera rays read it: the light where each node's sensors look.
     cache_ = std::make_unique<RadianceCache>(
         scene, distinct_.nodes, processes, RadianceCache::SunDepths::kByCaller,
-        sensors_of_nodes(distinct_), photons_of_nodes(scene, distinct_));
+        sensors_of_nodes(distinct_), photons_of_nodes(scene, distinct_), progress);
     if (!cache_->volume().has_medium()) throw not_one_grid();
     volume = &cache_->volume();
     source = MarchSource::kCache;

@@ -29,7 +29,8 @@ class LatticeBatchIntegrator final : public BatchIntegrator {
   // radiance-cache) and `spectra`, on `executor`.
   LatticeBatchIntegrator(const Scene& scene, const FrameSpectra& spectra,
                          std::unique_ptr<LatticeExecutor> executor,
-                         const ProcessGroup& processes = single_process());
+                         const ProcessGroup& processes = single_process(),
+                         const PreparationProgress& progress = {});
   ~LatticeBatchIntegrator() override;
 
   RenderMethod method() const override { return scene().settings.method; }

@@ -11,6 +11,7 @@
 // per-thread scratch lives in a RayWorkspace that the renderer asks for once
 // per row and reuses for every ray of the row, so that no ray allocates.
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <memory>
 #include <vector>
@@ -63,6 +64,11 @@ struct RayWorkspace {
   std::uint64_t segments = 0;         // medium cells visited
   std::uint64_t integrand_evals = 0;  // evaluations of an emission integrand
 };
+
+// How far the preparation of a frame is (the photon methods' tracing):
+// `done` of `total` photons traced, over all the frame's spectral nodes.
+// Called from any thread; an exception it throws stops the preparation.
+using PreparationProgress = std::function<void(long long done, long long total)>;
 
 // What an integrator spent preparing a frame for one sensor.
 struct PreparationStats {

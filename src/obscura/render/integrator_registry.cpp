@@ -14,11 +14,13 @@ namespace {
 
 template <typename T>
 std::unique_ptr<Integrator> make(const Scene& scene, const FrameSpectra& spectra,
-                                 const ProcessGroup& processes) {
-  if constexpr (std::is_constructible_v<T, const Scene&, const FrameSpectra&, const ProcessGroup&>)
-    return std::make_unique<T>(scene, spectra, processes);
+                                 const ProcessGroup& processes,
+                                 const PreparationProgress& progress) {
+  if constexpr (std::is_constructible_v<T, const Scene&, const FrameSpectra&, const ProcessGroup&,
+                                        const PreparationProgress&>)
+    return std::make_unique<T>(scene, spectra, processes, progress);
   else
-    return std::make_unique<T>(scene, spectra);  // prepares nothing worth sharing
+    return std::make_unique<T>(scene, spectra);  // prepares nothing worth sharing or waiting for
 }
 
 struct Entry {
@@ -43,11 +45,12 @@ IntegratorFactory integrator_factory(RenderMethod method) {
 }
 
 std::unique_ptr<Integrator> make_integrator(const Scene& scene, const FrameSpectra& spectra,
-                                            const ProcessGroup& processes) {
+                                            const ProcessGroup& processes,
+                                            const PreparationProgress& progress) {
   // Never the CPU in the GPU's stead: the GPU's integrator is the gpu layer's.
   OBSCURA_CHECK_MSG(scene.settings.device == RenderDevice::kCpu,
                     "\"device\": \"gpu\" takes make_frame_integrator (gpu/frame_integrator.h)");
-  return integrator_factory(scene.settings.method)(scene, spectra, processes);
+  return integrator_factory(scene.settings.method)(scene, spectra, processes, progress);
 }
 
 }  // namespace obscura

@@ -10,10 +10,12 @@
 namespace obscura {
 
 // `processes` share what a method prepares per frame (photon tracing); every
-// process of the group must make the integrator together.
+// process of the group must make the integrator together. `progress` hears
+// how far that preparation is (the photon methods').
 using IntegratorFactory = std::unique_ptr<Integrator> (*)(const Scene& scene,
                                                           const FrameSpectra& spectra,
-                                                          const ProcessGroup& processes);
+                                                          const ProcessGroup& processes,
+                                                          const PreparationProgress& progress);
 
 // The factory of `method`; throws Error for a method without one (a bug).
 IntegratorFactory integrator_factory(RenderMethod method);
@@ -24,6 +26,7 @@ IntegratorFactory integrator_factory(RenderMethod method);
 // settings ask for the GPU is an InternalError here (the gpu layer's
 // make_frame_integrator, gpu/frame_integrator.h, makes either).
 std::unique_ptr<Integrator> make_integrator(const Scene& scene, const FrameSpectra& spectra,
-                                            const ProcessGroup& processes = single_process());
+                                            const ProcessGroup& processes = single_process(),
+                                            const PreparationProgress& progress = {});
 
 }  // namespace obscura

@@ -107,7 +107,16 @@ RenderedFrame render_frame(const Scene& scene, std::size_t index, std::size_t fr
   frame.index = index;
   frame.time_s = scene.time_s;
   const FrameSpectra spectra = frame_spectra(scene);
-  const std::unique_ptr<Integrator> integrator = make_frame_integrator(scene, spectra, processes);
+  PreparationProgress preparation;
+  if (progress)
+    preparation = [&](long long done, long long total) {
+      RenderProgress p{index, frames, scene.time_s, -1, 0, 0};
+      p.photons_done = done;
+      p.photons_total = total;
+      progress(p);
+    };
+  const std::unique_ptr<Integrator> integrator =
+      make_frame_integrator(scene, spectra, processes, preparation);
   for (std::size_t s = 0; s < scene.sensors.size(); ++s) {
     RenderOptions options;
     options.row_offset = processes.rank();

@@ -33,9 +33,12 @@ namespace obscura {
 struct RenderProgress {
   std::size_t frame = 0, frames = 0;  // 0-based frame index, frame count
   double time_s = 0;                  // the frame's scene time
-  int sensor = 0;                     // index into scene.sensors
+  int sensor = 0;                     // index into scene.sensors; −1 while the frame is prepared
   int rows_done = 0, rows_total = 0;  // of that sensor's image (each row twice with an
                                       // adaptive threshold: RenderOptions::progress)
+  // While the frame is prepared (sensor −1), before any sensor's rows: the
+  // photons the photon methods have traced, of all they trace for it.
+  long long photons_done = 0, photons_total = 0;
 };
 
 // One region-mean row of the time series: a frame, a sensor, a region

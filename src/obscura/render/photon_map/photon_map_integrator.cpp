@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <mutex>
 #include <numbers>
 
 #include "obscura/core/sampling.h"
@@ -61,7 +62,8 @@ struct PhotonMapIntegrator::Workspace final : RayWorkspace {
 };
 
 PhotonMapIntegrator::PhotonMapIntegrator(const Scene& scene, const FrameSpectra& spectra,
-                                         const ProcessGroup& processes)
+                                         const ProcessGroup& processes,
+                                         const PreparationProgress& progress)
     : scene_(scene), spectra_(spectra), settings_(scene.settings.photon_map) {
   PhotonTracingSettings tracing;
   tracing.photons = settings_.photons_per_node;
@@ -69,6 +71,21 @@ PhotonMapIntegrator::PhotonMapIntegrator(const Scene& scene, const FrameSpectra&
   tracing.seed = scene.settings.seed;
   tracing.threads = scene.settings.threads;
   tracing.processes = &processes;
+  // The progress over every map's photons.
+  long long total = 0;
+  for (const std::vector<SpectralNodes>& sensor_bands : spectra)
+    for (const SpectralNodes& band : sensor_bands)
+      total += tracing.photons * static_cast<long long>(band.size());
+  // Reported in increasing order, whichever thread traced the chunk; a
+  // node's photons all count once it is traced (none are traced where its
+  // sources have no power).
+  std::mutex reporting;
+  long long done = 0, nodes_done = 0;
+  if (progress)
+    tracing.on_traced = [&](long long photons) {
+      std::lock_guard lock(reporting);
+      progress(done += photons, total);
+    };
   for (const std::vector<SpectralNodes>& sensor_bands : spectra) {
     const auto start = std::chrono::steady_clock::now();
     PreparationStats stats;
@@ -84,6 +101,8 @@ PhotonMapIntegrator::PhotonMapIntegrator(const Scene& scene, const FrameSpectra&
         NodeMap m;
         const auto t0 = std::chrono::steady_clock::now();
         m.traced = trace_photons(scene, node, base, tracing);
+        done = nodes_done += tracing.photons;
+        if (progress) progress(done, total);
         stats.trace_seconds += seconds_since(t0);
         stats.photons_traced += m.traced.walks.photons;
         stats.photons_colliding += m.traced.walks.colliding;

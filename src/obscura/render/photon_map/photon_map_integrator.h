@@ -40,9 +40,11 @@ namespace obscura {
 // once per staged scene when the integrator is made; then radiance along rays.
 class PhotonMapIntegrator final : public Integrator {
  public:
-  // `processes`: who shares the photon tracing (core/process_group.h).
+  // `processes`: who shares the photon tracing (core/process_group.h);
+  // `progress`: how far it is.
   PhotonMapIntegrator(const Scene& scene, const FrameSpectra& spectra,
-                      const ProcessGroup& processes = single_process());
+                      const ProcessGroup& processes = single_process(),
+                      const PreparationProgress& progress = {});
 
   RenderMethod method() const override { return RenderMethod::kPhotonMap; }
   std::unique_ptr<RayWorkspace> make_workspace() const override;

@@ -580,6 +580,7 @@ TracedPhotons trace_photons(const Scene& scene, const SpectralNode& node, std::u
       launched[c][source] += l.power;
       if (l.power > 0) trace_photon(scene, node, lambda, l, settings, rng, scratch, stored[c]);
     }
+    if (settings.on_traced) settings.on_traced(end - begin);
     const std::uint64_t bytes = stored[c].photons.size() * sizeof(Photon) +
                                 stored[c].flights.size() * sizeof(PhotonFlight) +
                                 stored[c].deposits.size() * sizeof(SurfaceDeposit);

@@ -36,6 +36,7 @@
 // reflection is already part of the surface radiance the environment source
 // uses.
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -60,6 +61,9 @@ struct PhotonTracingSettings {
   // emission photons carry the share P²/(the box's lateral area) of their
   // power. Positions are stored unwrapped; the user wraps them (m).
   double lateral_period_m = 0.0;
+  // Called with each chunk's photon count as it is traced, from any thread
+  // (progress displays; an exception it throws stops the tracing).
+  std::function<void(long long photons)> on_traced;
   std::uint64_t seed = 1;
   int threads = 0;
   int max_scatterings = 10000;  // safety net; roulette ends photons long before

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <functional>
 #include <limits>
+#include <mutex>
 #include <numbers>
 #include <optional>
 
@@ -106,7 +107,8 @@ std::vector<SpectralLerp> lerps_of(const std::vector<SpectralNode>& nodes) {
 RadianceCache::RadianceCache(const Scene& scene, const std::vector<SpectralNode>& nodes,
                              const ProcessGroup& processes, SunDepths sun_depths,
                              const std::vector<std::vector<int>>& node_sensors,
-                             const std::vector<long long>& node_photons)
+                             const std::vector<long long>& node_photons,
+                             const PreparationProgress& progress)
     : lattice_(*scene.medium, scene.settings.radiance_cache.voxel_m,
                scene.settings.radiance_cache.lateral_period_m,
                static_cast<std::size_t>(kMaxLatticeNodes)),
@@ -142,8 +144,9 @@ RadianceCache::RadianceCache(const Scene& scene, const std::vector<SpectralNode>
   const auto sun_start = std::chrono::steady_clock::now();
   compute_sun(scene, nodes);
   sun_seconds = seconds_since(sun_start);
+  for (const long long n : node_photons_) photons_total_ += n;
   for (std::size_t u = 0; u < nodes.size(); ++u)
-    splat(scene, nodes[u], static_cast<int>(u), kernel_moments);
+    splat(scene, nodes[u], static_cast<int>(u), kernel_moments, progress);
   seconds = seconds_since(start);
 }
 
@@ -474,7 +477,8 @@ std::vector<float> RadianceCache::kernel_scattering(const Scene& scene) const {
 }
 
 void RadianceCache::splat(const Scene& scene, const SpectralNode& node, int index,
-                          const std::vector<float>& kernel_moments) {
+                          const std::vector<float>& kernel_moments,
+                          const PreparationProgress& progress) {
   const RadianceCacheSettings& settings = scene.settings.radiance_cache;
   auto t0 = std::chrono::steady_clock::now();
   PhotonTracingSettings tracing;
@@ -491,6 +495,21 @@ void RadianceCache::splat(const Scene& scene, const SpectralNode& node, int inde
   tracing.absorb_by_weight = true;
   // The cloud's light on the ground (ground_light.h).
   tracing.surface_deposits = GroundLight::has_ground(scene) && !lattice_.periodic();
+  // The node's photons count as done as they are traced, or at once where
+  // it traces none.
+  const auto node_done = [&] {
+    photons_done_ += tracing.photons;
+    if (progress) progress(photons_done_, photons_total_);
+  };
+  // Reported in increasing order, whichever thread traced the chunk.
+  std::mutex reporting;
+  long long traced_now = 0;
+  if (progress)
+    tracing.on_traced = [&](long long photons) {
+      std::lock_guard lock(reporting);
+      traced_now += photons;
+      progress(photons_done_ + traced_now, photons_total_);
+    };
   // Where the medium does not scatter at this node (an absorbing smoke in
   // the infrared), σs J is zero whatever J: the photons' flights would be
   // splatted for nothing, and the light channels stay zero. The photons
@@ -501,7 +520,7 @@ void RadianceCache::splat(const Scene& scene, const SpectralNode& node, int inde
   // photons carry nothing the images read.
   const bool scatters = node_scatters(index);
   if (!scatters) {
-    if (!tracing.surface_deposits) return;
+    if (!tracing.surface_deposits) return node_done();
     tracing.flights = false;
     tracing.sun_photons = false;
     tracing.surface_photons = false;
@@ -509,6 +528,7 @@ void RadianceCache::splat(const Scene& scene, const SpectralNode& node, int inde
   // One block of 2^40 photon streams per spectral node, above the pixels'.
   const std::uint64_t base = (static_cast<std::uint64_t>(index) + 1) << 40;
   TracedPhotons traced = trace_photons(scene, node, base, tracing);
+  node_done();
   photons_stored_ += tracing.flights ? traced.flights.size() : traced.photons.size();
   walks_.photons += traced.walks.photons;
   walks_.colliding += traced.walks.colliding;

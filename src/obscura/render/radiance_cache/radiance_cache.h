@@ -62,11 +62,13 @@ class RadianceCache {
   // elsewhere). Empty: everywhere, for rays in any direction.
   // `node_photons`: per node, the photons launched for its light (empty:
   // settings' photons_per_node for every node; photons_of_nodes).
+  // `progress`: the photons traced so far by this process, of all nodes'.
   RadianceCache(const Scene& scene, const std::vector<SpectralNode>& nodes,
                 const ProcessGroup& processes = single_process(),
                 SunDepths sun_depths = SunDepths::kHere,
                 const std::vector<std::vector<int>>& node_sensors = {},
-                const std::vector<long long>& node_photons = {});
+                const std::vector<long long>& node_photons = {},
+                const PreparationProgress& progress = {});
 
   // Sensors whose image's half-diagonal is at most this get the phase
   // function's forward peak beyond the harmonics (sensor_peaks).
@@ -115,7 +117,7 @@ class RadianceCache {
   static constexpr int kKernelMoments = 4;
   std::vector<float> kernel_scattering(const Scene& scene) const;
   void splat(const Scene& scene, const SpectralNode& node, int index,
-             const std::vector<float>& kernel_moments);
+             const std::vector<float>& kernel_moments, const PreparationProgress& progress);
   // Whether the medium scatters anywhere at spectral node `index` (σs ≠ 0 in
   // some record; true where the records do not hold the medium).
   bool node_scatters(int index) const;
@@ -149,6 +151,7 @@ class RadianceCache {
   std::vector<long long> node_photons_;  // per spectral node, launched
   std::uint64_t photons_stored_ = 0;
   PhotonWalks walks_;
+  long long photons_done_ = 0, photons_total_ = 0;  // for the progress
 };
 
 // Adds to `behind[j]` (a surface's radiance seen along camera ray `camera`,

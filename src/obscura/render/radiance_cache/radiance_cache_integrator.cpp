@@ -15,14 +15,15 @@ struct Workspace final : RayWorkspace {
 }  // namespace
 
 RadianceCacheIntegrator::RadianceCacheIntegrator(const Scene& scene, const FrameSpectra& spectra,
-                                                 const ProcessGroup& processes)
+                                                 const ProcessGroup& processes,
+                                                 const PreparationProgress& progress)
     : scene_(scene), spectra_(spectra), distinct_(distinct_nodes(spectra)) {
   if (scene.medium && !distinct_.nodes.empty()) {
     // Only this integrator's camera rays read the cache: its light is made
     // where the sensors of each node look.
     cache_ = std::make_unique<RadianceCache>(
         scene, distinct_.nodes, processes, RadianceCache::SunDepths::kHere,
-        sensors_of_nodes(distinct_), photons_of_nodes(scene, distinct_));
+        sensors_of_nodes(distinct_), photons_of_nodes(scene, distinct_), progress);
     preparation_.photons = cache_->photons_stored();
     preparation_.photon_bytes = cache_->memory_bytes();
     preparation_.seconds = cache_->seconds;

@@ -18,9 +18,11 @@ namespace obscura {
 
 class RadianceCacheIntegrator final : public Integrator {
  public:
-  // `processes`: who shares the photon tracing (core/process_group.h).
+  // `processes`: who shares the photon tracing (core/process_group.h);
+  // `progress`: how far it is.
   RadianceCacheIntegrator(const Scene& scene, const FrameSpectra& spectra,
-                          const ProcessGroup& processes = single_process());
+                          const ProcessGroup& processes = single_process(),
+                          const PreparationProgress& progress = {});
 
   RenderMethod method() const override { return RenderMethod::kRadianceCache; }
   std::unique_ptr<RayWorkspace> make_workspace() const override;
