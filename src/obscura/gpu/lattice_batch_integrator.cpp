@@ -75,9 +75,7 @@ LatticeBatchIntegrator::LatticeBatchIntegrator(const Scene& scene, const FrameSp
     preparation_.photons = cache_->photons_stored();
     preparation_.photon_bytes = cache_->memory_bytes();
     preparation_.trace_seconds = cache_->photon_seconds;
-    preparation_.photons_traced = cache_->photon_walks().photons;
-    preparation_.photons_colliding = cache_->photon_walks().colliding;
-    preparation_.photon_collisions = cache_->photon_walks().collisions;
+    preparation_.walks = cache_->photon_walks();
   }
 
   FrameLattice frame;

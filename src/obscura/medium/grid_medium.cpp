@@ -205,14 +205,13 @@ inline SampleSums sample_sums(const GridChannels& ch, int s, const std::array<st
   return {sa, ss, kWithG && ss > 0 ? gs / ss : 0.0};
 }
 
-// Sample s's sums into `out` (its g only with kWithG).
-template <bool kWithG>
+// Sample s's sums (σa, σs, g) into `out`.
 void sample_coefficients(const GridChannels& ch, int s, const std::array<std::size_t, 8>& idx,
                          const std::array<double, 8>& w, MediumPoint& out) {
-  const SampleSums sums = sample_sums<kWithG>(ch, s, idx, w);
+  const SampleSums sums = sample_sums<true>(ch, s, idx, w);
   out.sigma_a[s] = sums.sigma_a;
   out.sigma_s[s] = sums.sigma_s;
-  if constexpr (kWithG) out.g[s] = sums.g;
+  out.g[s] = sums.g;
 }
 
 double trilinear_temperature(const GridChannels& ch, const std::array<std::size_t, 8>& idx,
@@ -244,8 +243,8 @@ void samples_at(const VoxelGrid& g, const GridChannels& ch, const Vec3& p, int f
     out.temperature_k = 0.0;
     return;
   }
-  sample_coefficients<true>(ch, first, idx, w, out);
-  if (second != first) sample_coefficients<true>(ch, second, idx, w, out);
+  sample_coefficients(ch, first, idx, w, out);
+  if (second != first) sample_coefficients(ch, second, idx, w, out);
   out.temperature_k = trilinear_temperature(ch, idx, w);
 }
 
@@ -261,7 +260,7 @@ void GridMedium::coefficients_at(const Vec3& p, MediumPoint& out) const {
   std::array<std::size_t, 8> idx;
   std::array<double, 8> w;
   if (!trilinear_corners(g, g.placement().world_to_index(p), idx, w)) return;
-  for (int s = 0; s < ns; ++s) sample_coefficients<true>(channels_, s, idx, w, out);
+  for (int s = 0; s < ns; ++s) sample_coefficients(channels_, s, idx, w, out);
   out.temperature_k = trilinear_temperature(channels_, idx, w);
 }
 

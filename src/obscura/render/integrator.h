@@ -70,6 +70,21 @@ struct RayWorkspace {
 // Called from any thread; an exception it throws stops the preparation.
 using PreparationProgress = std::function<void(long long done, long long total)>;
 
+// How a frame's traced photons went, which is what they cost: the photons
+// traced (an environment line launches one per piece of it), those with at
+// least one real collision in the medium (they meet the smoke), and their
+// real collisions (scatterings and absorptions). A walk in a thick cloud
+// that scatters without absorbing is long (docs/validation.md).
+struct PhotonWalks {
+  std::uint64_t photons = 0, colliding = 0, collisions = 0;
+  PhotonWalks& operator+=(const PhotonWalks& o) {
+    photons += o.photons;
+    colliding += o.colliding;
+    collisions += o.collisions;
+    return *this;
+  }
+};
+
 // What an integrator spent preparing a frame for one sensor.
 struct PreparationStats {
   std::uint64_t photons = 0;       // stored, over all maps
@@ -77,9 +92,7 @@ struct PreparationStats {
   double seconds = 0;              // wall time of the preparation
   double trace_seconds = 0;        // … of which tracing photons
   double build_seconds = 0;        // … and building search structures
-  // The photons' walks (photon_map/photon_tracing.h, PhotonWalks): photons
-  // traced, those that met the medium, and their real collisions.
-  std::uint64_t photons_traced = 0, photons_colliding = 0, photon_collisions = 0;
+  PhotonWalks walks;               // of the photons traced
 };
 
 class Integrator {

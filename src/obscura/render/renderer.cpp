@@ -147,9 +147,9 @@ SensorImage render(const Scene& scene, const Sensor& sensor, int sensor_index,
   image.stats.photon_seconds = prep.seconds;
   image.stats.photon_trace_seconds = prep.trace_seconds;
   image.stats.photon_build_seconds = prep.build_seconds;
-  image.stats.photons_traced = prep.photons_traced;
-  image.stats.photons_colliding = prep.photons_colliding;
-  image.stats.photon_collisions = prep.photon_collisions;
+  image.stats.photons_traced = prep.walks.photons;
+  image.stats.photons_colliding = prep.walks.colliding;
+  image.stats.photon_collisions = prep.walks.collisions;
   // The sensor's cost: its pixels and what was prepared for it.
   image.stats.seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() +

@@ -5,7 +5,6 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
-#include <mutex>
 #include <numbers>
 
 #include "obscura/core/sampling.h"
@@ -76,16 +75,8 @@ PhotonMapIntegrator::PhotonMapIntegrator(const Scene& scene, const FrameSpectra&
   for (const std::vector<SpectralNodes>& sensor_bands : spectra)
     for (const SpectralNodes& band : sensor_bands)
       total += tracing.photons * static_cast<long long>(band.size());
-  // Reported in increasing order, whichever thread traced the chunk; a
-  // node's photons all count once it is traced (none are traced where its
-  // sources have no power).
-  std::mutex reporting;
-  long long done = 0, nodes_done = 0;
-  if (progress)
-    tracing.on_traced = [&](long long photons) {
-      std::lock_guard lock(reporting);
-      progress(done += photons, total);
-    };
+  PhotonTracingProgress tracing_progress(progress, total);
+  tracing.on_traced = tracing_progress.on_traced();
   for (const std::vector<SpectralNodes>& sensor_bands : spectra) {
     const auto start = std::chrono::steady_clock::now();
     PreparationStats stats;
@@ -101,12 +92,9 @@ PhotonMapIntegrator::PhotonMapIntegrator(const Scene& scene, const FrameSpectra&
         NodeMap m;
         const auto t0 = std::chrono::steady_clock::now();
         m.traced = trace_photons(scene, node, base, tracing);
-        done = nodes_done += tracing.photons;
-        if (progress) progress(done, total);
+        tracing_progress.node_done(tracing.photons);
         stats.trace_seconds += seconds_since(t0);
-        stats.photons_traced += m.traced.walks.photons;
-        stats.photons_colliding += m.traced.walks.colliding;
-        stats.photon_collisions += m.traced.walks.collisions;
+        stats.walks += m.traced.walks;
         const auto t1 = std::chrono::steady_clock::now();
         m.map = std::make_unique<PhotonMap>(std::move(m.traced.photons));
         stats.build_seconds += seconds_since(t1);

@@ -506,6 +506,21 @@ void share_chunks(const ProcessGroup& processes, std::vector<ChunkRecord>& store
 
 }  // namespace
 
+std::function<void(long long)> PhotonTracingProgress::on_traced() {
+  if (!progress_) return {};
+  return [this](long long photons) {
+    std::lock_guard lock(mutex_);
+    progress_(done_ += photons, total_);
+  };
+}
+
+void PhotonTracingProgress::node_done(long long photons) {
+  if (!progress_) return;
+  std::lock_guard lock(mutex_);
+  done_ = nodes_done_ += photons;
+  progress_(done_, total_);
+}
+
 BoundingSphere photon_bounding_sphere(const Scene& scene) {
   if (!scene.medium) return {};
   const BBox3 b = scene.medium->bounds();
@@ -624,9 +639,7 @@ TracedPhotons trace_photons(const Scene& scene, const SpectralNode& node, std::u
     out.launched.sun_w_um += launched[c][kSun];
     out.launched.environment_w_um += launched[c][kEnvironment];
     out.launched.emission_w_um += launched[c][kEmission];
-    out.walks.photons += stored[c].walks.photons;
-    out.walks.colliding += stored[c].walks.colliding;
-    out.walks.collisions += stored[c].walks.collisions;
+    out.walks += stored[c].walks;
   }
   return out;
 }

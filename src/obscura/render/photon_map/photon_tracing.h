@@ -37,10 +37,12 @@
 // uses.
 #include <cstdint>
 #include <functional>
+#include <mutex>
 #include <string>
 #include <vector>
 
 #include "obscura/core/process_group.h"
+#include "obscura/render/integrator.h"
 #include "obscura/render/photon_map/photon.h"
 #include "obscura/render/spectral_nodes.h"
 #include "obscura/scene/scene.h"
@@ -110,15 +112,6 @@ struct PhotonSourcePowers {
   double total() const { return sun_w_um + environment_w_um + emission_w_um; }
 };
 
-// How the traced photons went, which is what they cost: the photons traced
-// (an environment line launches one per piece of it), those with at least
-// one real collision in the medium (they meet the smoke), and their real
-// collisions (scatterings and absorptions). A walk in a thick cloud that
-// scatters without absorbing is long (docs/validation.md).
-struct PhotonWalks {
-  std::uint64_t photons = 0, colliding = 0, collisions = 0;
-};
-
 struct TracedPhotons {
   std::vector<Photon> photons;              // stored at scattering events
   std::vector<PhotonFlight> flights;        // with settings.flights: the flights instead
@@ -126,7 +119,26 @@ struct TracedPhotons {
   PhotonSourcePowers launched;              // Σ of the launched photons' powers per source
   PhotonSourcePowers estimated;             // the powers used to share the photons out
   long long launched_count[3] = {0, 0, 0};  // sun, environment, emission
-  PhotonWalks walks;
+  PhotonWalks walks;                        // render/integrator.h
+};
+
+// The progress of a frame's photon tracing over its spectral nodes, for a
+// PreparationProgress: each chunk as it is traced (on_traced, for
+// PhotonTracingSettings::on_traced), then a node's photons all at once when
+// it is done (node_done; one whose sources have no power traces none),
+// reported in increasing order whichever thread traced the chunk.
+class PhotonTracingProgress {
+ public:
+  PhotonTracingProgress(PreparationProgress progress, long long total)
+      : progress_(std::move(progress)), total_(total) {}
+  // Empty without a progress to report to.
+  std::function<void(long long photons)> on_traced();
+  void node_done(long long photons);
+
+ private:
+  PreparationProgress progress_;
+  long long total_ = 0, nodes_done_ = 0, done_ = 0;
+  std::mutex mutex_;
 };
 
 // Throws InputError naming settings.memory_field when the photons (or

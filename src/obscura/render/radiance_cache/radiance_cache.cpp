@@ -8,7 +8,6 @@
 #include <cstdint>
 #include <functional>
 #include <limits>
-#include <mutex>
 #include <numbers>
 #include <optional>
 
@@ -144,9 +143,11 @@ RadianceCache::RadianceCache(const Scene& scene, const std::vector<SpectralNode>
   const auto sun_start = std::chrono::steady_clock::now();
   compute_sun(scene, nodes);
   sun_seconds = seconds_since(sun_start);
-  for (const long long n : node_photons_) photons_total_ += n;
+  long long photons_total = 0;
+  for (const long long n : node_photons_) photons_total += n;
+  PhotonTracingProgress tracing_progress(progress, photons_total);
   for (std::size_t u = 0; u < nodes.size(); ++u)
-    splat(scene, nodes[u], static_cast<int>(u), kernel_moments, progress);
+    splat(scene, nodes[u], static_cast<int>(u), kernel_moments, tracing_progress);
   seconds = seconds_since(start);
 }
 
@@ -478,7 +479,7 @@ std::vector<float> RadianceCache::kernel_scattering(const Scene& scene) const {
 
 void RadianceCache::splat(const Scene& scene, const SpectralNode& node, int index,
                           const std::vector<float>& kernel_moments,
-                          const PreparationProgress& progress) {
+                          PhotonTracingProgress& progress) {
   const RadianceCacheSettings& settings = scene.settings.radiance_cache;
   auto t0 = std::chrono::steady_clock::now();
   PhotonTracingSettings tracing;
@@ -495,21 +496,7 @@ void RadianceCache::splat(const Scene& scene, const SpectralNode& node, int inde
   tracing.absorb_by_weight = true;
   // The cloud's light on the ground (ground_light.h).
   tracing.surface_deposits = GroundLight::has_ground(scene) && !lattice_.periodic();
-  // The node's photons count as done as they are traced, or at once where
-  // it traces none.
-  const auto node_done = [&] {
-    photons_done_ += tracing.photons;
-    if (progress) progress(photons_done_, photons_total_);
-  };
-  // Reported in increasing order, whichever thread traced the chunk.
-  std::mutex reporting;
-  long long traced_now = 0;
-  if (progress)
-    tracing.on_traced = [&](long long photons) {
-      std::lock_guard lock(reporting);
-      traced_now += photons;
-      progress(photons_done_ + traced_now, photons_total_);
-    };
+  tracing.on_traced = progress.on_traced();
   // Where the medium does not scatter at this node (an absorbing smoke in
   // the infrared), σs J is zero whatever J: the photons' flights would be
   // splatted for nothing, and the light channels stay zero. The photons
@@ -520,7 +507,7 @@ void RadianceCache::splat(const Scene& scene, const SpectralNode& node, int inde
   // photons carry nothing the images read.
   const bool scatters = node_scatters(index);
   if (!scatters) {
-    if (!tracing.surface_deposits) return node_done();
+    if (!tracing.surface_deposits) return progress.node_done(tracing.photons);
     tracing.flights = false;
     tracing.sun_photons = false;
     tracing.surface_photons = false;
@@ -528,11 +515,9 @@ void RadianceCache::splat(const Scene& scene, const SpectralNode& node, int inde
   // One block of 2^40 photon streams per spectral node, above the pixels'.
   const std::uint64_t base = (static_cast<std::uint64_t>(index) + 1) << 40;
   TracedPhotons traced = trace_photons(scene, node, base, tracing);
-  node_done();
+  progress.node_done(tracing.photons);
   photons_stored_ += tracing.flights ? traced.flights.size() : traced.photons.size();
-  walks_.photons += traced.walks.photons;
-  walks_.colliding += traced.walks.colliding;
-  walks_.collisions += traced.walks.collisions;
+  walks_ += traced.walks;
   if (tracing.surface_deposits) {
     const BoundingSphere sphere = photon_bounding_sphere(scene);
     ground_[static_cast<std::size_t>(index)] =

@@ -117,7 +117,7 @@ class RadianceCache {
   static constexpr int kKernelMoments = 4;
   std::vector<float> kernel_scattering(const Scene& scene) const;
   void splat(const Scene& scene, const SpectralNode& node, int index,
-             const std::vector<float>& kernel_moments, const PreparationProgress& progress);
+             const std::vector<float>& kernel_moments, PhotonTracingProgress& progress);
   // Whether the medium scatters anywhere at spectral node `index` (σs ≠ 0 in
   // some record; true where the records do not hold the medium).
   bool node_scatters(int index) const;
@@ -151,7 +151,6 @@ class RadianceCache {
   std::vector<long long> node_photons_;  // per spectral node, launched
   std::uint64_t photons_stored_ = 0;
   PhotonWalks walks_;
-  long long photons_done_ = 0, photons_total_ = 0;  // for the progress
 };
 
 // Adds to `behind[j]` (a surface's radiance seen along camera ray `camera`,

@@ -29,9 +29,7 @@ RadianceCacheIntegrator::RadianceCacheIntegrator(const Scene& scene, const Frame
     preparation_.seconds = cache_->seconds;
     preparation_.trace_seconds = cache_->photon_seconds;
     preparation_.build_seconds = cache_->seconds - cache_->photon_seconds;
-    preparation_.photons_traced = cache_->photon_walks().photons;
-    preparation_.photons_colliding = cache_->photon_walks().colliding;
-    preparation_.photon_collisions = cache_->photon_walks().collisions;
+    preparation_.walks = cache_->photon_walks();
   }
 }
 
