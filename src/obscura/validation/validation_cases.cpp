@@ -30,9 +30,9 @@ struct MeanEstimate {
 
 // Mean and standard error of draws of `sample`, draw i with its own pcg32
 // stream, so the result does not depend on the thread count. With o.samples > 0
-// exactly that many draws; with 0, batches until the standard error is below
-// max(target_stderr, relative_target·|mean|) (at most kMaxAutoSamples draws).
-constexpr int kAutoBatch = 50000;
+// exactly that many draws; with 0, batches of o.batch_samples until the
+// standard error is below max(target_stderr, relative_target·|mean|) (at most
+// kMaxAutoSamples draws).
 constexpr long long kMaxAutoSamples = 50000000;
 constexpr long long kChunk = 1000;  // draws summed per parallel work item
 
@@ -43,7 +43,7 @@ MeanEstimate estimate(const ValidationOptions& o, double target_stderr, std::uin
   long long n = 0;
   MeanEstimate e;
   while (true) {
-    const long long batch = o.samples > 0 ? o.samples : kAutoBatch;
+    const long long batch = o.samples > 0 ? o.samples : o.batch_samples;
     const std::size_t chunks = static_cast<std::size_t>((batch + kChunk - 1) / kChunk);
     std::vector<double> chunk_sum(chunks, 0.0), chunk_sum2(chunks, 0.0);
     parallel_for(chunks, o.settings.threads, [&](std::size_t c) {
@@ -149,6 +149,9 @@ void check_options(const ValidationOptions& o) {
   if (o.samples != 0 && o.samples < 2)
     throw InputError("", "--samples",
                      "must be at least 2 (or 0: until the standard error is small enough)");
+  if (o.batch_samples < 1000)
+    throw InputError("", "batch_samples",
+                     "must be at least 1000 (draws per batch while sampling to the target)");
   // The settings `obscura validate` takes on its command line are named by
   // their options; the rest by their place in a scene's render object.
   static const std::map<std::string_view, std::string_view> kOptions = {

@@ -31,9 +31,13 @@ struct ValidationRow {
 };
 
 struct ValidationOptions {
-  // Paths (or estimates) per quantity; 0: batches of 50 000 until the standard
-  // error is below half the tolerance (at most 5e7).
+  // Paths (or estimates) per quantity; 0: batches of `batch_samples` until
+  // the standard error is below half the tolerance (at most 5e7).
   int samples = 0;
+  // Draws per batch while sampling to the target (samples = 0): the first
+  // batch is the fewest draws a quantity gets. Smaller batches stop nearer
+  // the target, at the price of a rougher standard error where they stop.
+  int batch_samples = 50000;
   // The solver and its settings (scene/render_settings.h), checked as a scene
   // file's are; settings.seed and settings.threads also drive the cases' own
   // sampling (results do not depend on the thread count). Monte Carlo methods
