@@ -118,22 +118,17 @@ class CacheInScattering {
     const auto& slot = at.slot;
     const auto& w = at.w;
     const LatticeVolume& volume = cache_.volume();
-    const int stride = volume.stride();
-    const int count = only_sun ? record::kSunVisibility + 1 : record::kSh + cache_.sh_count();
+    const auto stride = static_cast<std::size_t>(volume.stride());
     for (int j = 0; j < nodes_; ++j) {
       if (!(sigma_s[j] > 0.0)) continue;
       std::array<float, record::kSh + HgConvolution::readable(kMaxShDegree)> v{};
       const float* records = volume.records(record_[j]);
-      // In float, as the lattice march interpolates (lattice_view_march.h):
-      // the channels' loop runs in SIMD lanes. A product in double converted
-      // back per channel was a third of a slab validation's instructions at
-      // degree 6 (docs/performance.md).
-      for (int c = 0; c < 8; ++c) {
-        if (slot[c] == NodeLattice::kNoSlot || w[c] == 0.0) continue;
-        const float* r = records + slot[c] * static_cast<std::size_t>(stride);
-        const float wc = static_cast<float>(w[c]);
-        for (int i = record::kTauSun; i < count; ++i) v[i] += wc * r[i];
-      }
+      if (only_sun)
+        interpolate<record::kSunVisibility + 1>(records, stride, slot, w, v.data());
+      else
+        with_sh_count(cache_.sh_degree(), [&](auto count) {
+          interpolate<record::kSh + decltype(count)::value>(records, stride, slot, w, v.data());
+        });
       const double gj = cache_clamped_g(g[j]);
       const float* light = v.data() + record::kTauSun;
       double sun_j = 0.0;  // the sun's part of J (read where `sun` is given)
@@ -143,6 +138,27 @@ class CacheInScattering {
       emissivity[j] += sigma_s[j] * j_in;
       if (sun) sun[j] = sigma_s[j] * sun_j;
     }
+  }
+
+  // Channels kTauSun … kEnd − 1 of the eight corners' records at `slot`,
+  // weighted by `w`, into v. In float, as the lattice march interpolates
+  // (lattice_view_march.h), and with the channels' count a constant, so that
+  // their sums stay in SIMD registers across the corners (with the count
+  // read at run time they went through memory at every corner: half a slab
+  // validation's time at degree 6, docs/performance.md).
+  template <int kEnd>
+  static void interpolate(const float* records, std::size_t stride,
+                          const std::array<std::size_t, 8>& slot, const std::array<double, 8>& w,
+                          float* v) {
+    constexpr int kCount = kEnd - record::kTauSun;
+    std::array<float, kCount> sum{};
+    for (int c = 0; c < 8; ++c) {
+      if (slot[c] == NodeLattice::kNoSlot || w[c] == 0.0) continue;
+      const float* r = records + slot[c] * stride + record::kTauSun;
+      const float wc = static_cast<float>(w[c]);
+      for (int i = 0; i < kCount; ++i) sum[i] += wc * r[i];
+    }
+    for (int i = 0; i < kCount; ++i) v[record::kTauSun + i] = sum[i];
   }
 
   // The lattice's corners of the point at distance t. The marcher reads the
