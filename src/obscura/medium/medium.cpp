@@ -58,6 +58,18 @@ void Medium::march_cells(const Ray& ray, double t_min, double t_max, const March
       const double s0 = q * hp;
       const double s_at[3] = {s0, s0 + 0.5 * hp, q + 1 == pieces ? h : s0 + hp};
       for (int p = 0; p < 3; ++p) {
+        if (p == 0 && q > 0) {
+          // A piece's entry is the last piece's exit: its values are copied,
+          // not evaluated again (a third of the evaluations on a long cell).
+          const std::size_t block = per_component * static_cast<std::size_t>(seg.component_count);
+          std::copy_n(values.data() + 2 * block, block, values.data());
+          for (int c = 0; c < seg.component_count; ++c) {
+            double* v = values.data() + static_cast<std::size_t>(c) * per_component;
+            cell.point[0][c] = {v, v + ns, with_g ? v + 2 * ns : nullptr,
+                                cell.point[2][c].temperature_k};
+          }
+          continue;
+        }
         if (with_g) coefficients_at(ray.at(seg.t_begin + s_at[p]), at);
         for (int c = 0; c < seg.component_count; ++c) {
           double* v = values.data() +

@@ -163,8 +163,10 @@ class CacheInScattering {
 
   // The lattice's corners of the point at distance t. The marcher reads the
   // light and the sun's depth at the same points (a cell's exit is the next
-  // one's entry), so the last two lookups are kept: half the lookups, the
-  // same values (docs/performance.md).
+  // one's entry), so the last three lookups are kept: per cell it reads the
+  // light at the middle and the exit, then the sun's depth at the entry (the
+  // last cell's exit, three lookups back) and the exit, so two lookups a cell
+  // where two kept ones left three; the same values (docs/performance.md).
   struct LatticeCorners {
     double t = -1.0;  // no lookup yet: distances along a ray are >= 0
     bool inside = false;
@@ -175,7 +177,7 @@ class CacheInScattering {
     for (const LatticeCorners& kept : kept_)
       if (kept.t == t) return kept;
     LatticeCorners& fresh = kept_[next_];
-    next_ ^= 1;
+    next_ = (next_ + 1) % static_cast<int>(kept_.size());
     fresh.t = t;
     fresh.inside = cache_.lattice().corners(ray_.at(t), fresh.slot, fresh.w);
     return fresh;
@@ -187,7 +189,7 @@ class CacheInScattering {
   const Ray& ray_;
   const int* record_;
   int nodes_;
-  std::array<LatticeCorners, 2> kept_;
+  std::array<LatticeCorners, 3> kept_;
   int next_ = 0;
 };
 
