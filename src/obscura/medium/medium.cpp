@@ -55,8 +55,11 @@ void Medium::march_cells(const Ray& ray, double t_min, double t_max, const March
     const std::size_t per_component = 3 * static_cast<std::size_t>(ns);
     values.resize(3 * per_component * static_cast<std::size_t>(seg.component_count));
     for (int q = 0; q < pieces; ++q) {
+      // A piece's exit as (q + 1) hp, the next entry's own expression, so
+      // that the two are the same double (a marcher finds what it read there
+      // by its distance: an exit of q hp + hp missed it one time in three).
       const double s0 = q * hp;
-      const double s_at[3] = {s0, s0 + 0.5 * hp, q + 1 == pieces ? h : s0 + hp};
+      const double s_at[3] = {s0, s0 + 0.5 * hp, q + 1 == pieces ? h : (q + 1) * hp};
       for (int p = 0; p < 3; ++p) {
         if (p == 0 && q > 0) {
           // A piece's entry is the last piece's exit: its values are copied,
