@@ -417,7 +417,9 @@ void GridMedium::march_cells(const Ray& ray, double t_min, double t_max,
                       std::max(1, static_cast<int>(std::ceil((t1 - t0) / options.max_cell_m)));
                   const double hp = (t1 - t0) / pieces;
                   for (int q = 0; q < pieces; ++q) {
-                    const double p0 = t0 + q * hp, p1 = q + 1 == pieces ? t1 : p0 + hp;
+                    // The exit as the next entry's own expression, so that
+                    // the two are the same double (Medium::march_cells).
+                    const double p0 = t0 + q * hp, p1 = q + 1 == pieces ? t1 : t0 + (q + 1) * hp;
                     const bool continuous = p0 == previous_end;
                     if (continuous) {
                       std::swap(slot[0], slot[2]);
