@@ -19,6 +19,7 @@
 #include "obscura/medium/homogeneous_medium.h"
 #include "obscura/medium/tracking.h"
 #include "obscura/render/integrator_registry.h"
+#include "obscura/render/lattice/node_lattice.h"
 
 namespace obscura {
 namespace {
@@ -435,14 +436,15 @@ std::vector<ValidationRow> validate_slab(const SlabSpec& slab,
   // The radiance cache solves the laterally infinite slab itself: photons
   // launched through one period square and a lattice that wraps sideways.
   // The slab is invariant under lateral shifts, so any period is exact; the
-  // default is the narrowest the lattice takes, four spacings (NodeLattice),
+  // default is the narrowest the lattice takes (NodeLattice::kMinPeriodNodes),
   // which keeps each node's records small enough for the processor's cache
   // (the converged grid 20 % faster than at one thickness, its errors
   // moved by at most 0.13 %: docs/performance.md).
   ValidationOptions options = o;
   RadianceCacheSettings& cache = options.settings.radiance_cache;
   if (options.settings.method == RenderMethod::kRadianceCache && cache.lateral_period_m == 0.0)
-    cache.lateral_period_m = 4.0 * (cache.voxel_m > 0.0 ? cache.voxel_m : kThickness / 32.0);
+    cache.lateral_period_m =
+        NodeLattice::kMinPeriodNodes * NodeLattice::periodic_spacing_m(kThickness, cache.voxel_m);
   // The unscattered beam is scored by ratio tracking (T_direct); camera rays
   // must not see the sun's disc as well.
   const Solver solver(scene, kWavelength, options, slab.albedo > 0.0, false);

@@ -38,8 +38,8 @@ NodeLattice::NodeLattice(const Medium& medium, double spacing_m, double period_m
   Vec3 corner = b.lo;
   if (period_m > 0.0) {
     periodic_ = true;
-    h_ = spacing_m > 0 ? spacing_m : lengths.z / 32.0;
-    const int per = std::max(4, static_cast<int>(std::lround(period_m / h_)));
+    h_ = periodic_spacing_m(lengths.z, spacing_m);
+    const int per = std::max(kMinPeriodNodes, static_cast<int>(std::lround(period_m / h_)));
     h_ = period_m / per;
     // Nodes on the slab's faces: its σs steps there, at a node, where the
     // splats' normalisation (two-point Gauss per lattice interval) is exact.

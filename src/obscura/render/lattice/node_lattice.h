@@ -34,6 +34,15 @@ class NodeLattice {
   // would need more than `max_nodes` nodes.
   NodeLattice(const Medium& medium, double spacing_m, double period_m, std::size_t max_nodes);
 
+  // A periodic lattice wraps over this many nodes at least (a shorter period
+  // is widened to it).
+  static constexpr int kMinPeriodNodes = 4;
+  // The spacing of a periodic lattice over a slab `thickness_m` thick:
+  // `spacing_m` when > 0, else 32 intervals across the slab.
+  static double periodic_spacing_m(double thickness_m, double spacing_m) {
+    return spacing_m > 0 ? spacing_m : thickness_m / 32.0;
+  }
+
   double spacing_m() const { return h_; }
   const std::array<int, 3>& dims() const { return dims_; }
   bool periodic() const { return periodic_; }
